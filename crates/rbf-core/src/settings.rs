@@ -1,0 +1,51 @@
+//! What a fit can be told.
+
+use crate::{Kernel, NormalOffset};
+
+/// Settings of a fit. Every field has the papers' value as its default.
+///
+/// ```
+/// use rbf_core::{FitSettings, Kernel};
+/// let s = FitSettings { lambda: 1e-3, kernel: Some(Kernel::Linear), ..Default::default() };
+/// assert_eq!(s.kernel_for(3), Kernel::Linear);
+/// assert_eq!(FitSettings::default().kernel_for(2), Kernel::ThinPlate);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FitSettings {
+    /// The kernel; `None` picks r² log r in 2D and r³ in 3D.
+    pub kernel: Option<Kernel>,
+    /// Global regularization λ ≥ 0 added to every diagonal entry of the kernel block (paper 001,
+    /// §6.3). 0 interpolates exactly; larger values trade exactness for smoothness. The same
+    /// quantity as scipy's `RBFInterpolator(smoothing=λ)`.
+    pub lambda: f64,
+    /// The default distance from a normal constraint's point to its offset point.
+    pub normal_offset: NormalOffset,
+    /// Two constraint points closer than this fraction of the bounding box's longest side are
+    /// coincident, an error. 1e-9 by default.
+    pub min_separation: f64,
+    /// The largest accepted residual max|f(cᵢ) + λᵢwᵢ − hᵢ| relative to max|hᵢ|; a fit that
+    /// cannot reach it is reported as ill-conditioned instead of returned. 1e-6 by default.
+    pub max_residual: f64,
+}
+
+impl Default for FitSettings {
+    fn default() -> Self {
+        Self {
+            kernel: None,
+            lambda: 0.0,
+            normal_offset: NormalOffset::default(),
+            min_separation: 1e-9,
+            max_residual: 1e-6,
+        }
+    }
+}
+
+impl FitSettings {
+    /// The kernel used in `dim` dimensions.
+    pub const fn kernel_for(&self, dim: usize) -> Kernel {
+        match self.kernel {
+            Some(k) => k,
+            None => Kernel::for_dimension(dim),
+        }
+    }
+}

@@ -1,0 +1,287 @@
+//! Evaluation of an interpolant over borrowed slices: no allocator needed.
+
+use crate::kernel::{Radial, with_radial};
+use crate::{Kernel, Real};
+
+/// Points evaluated together by the batch routines: enough to fill a 512-bit vector of `f64`.
+const LANES: usize = 8;
+
+/// An interpolant f(x) = Σⱼ wⱼ φ(|x − cⱼ|) + a + b·x over borrowed data.
+///
+/// This is what a device with no heap evaluates: centres and weights can be `static` arrays in
+/// flash. [`crate::Interpolant::view`] gives one over an owned model.
+///
+/// ```
+/// use rbf_core::{InterpolantView, Kernel};
+/// // f(x) = 1 − |x|³: one centre at the origin with weight −1, and the constant 1.
+/// // Its zero set is the unit sphere.
+/// static CENTRES: [[f32; 3]; 1] = [[0.0, 0.0, 0.0]];
+/// static WEIGHTS: [f32; 1] = [-1.0];
+/// let f = InterpolantView::new(Kernel::Cubic, &CENTRES, &WEIGHTS, 1.0, [0.0; 3]).unwrap();
+/// assert_eq!(f.value(&[0.0, 0.0, 0.0]), 1.0); // inside: positive
+/// assert_eq!(f.value(&[1.0, 0.0, 0.0]), 0.0); // on the surface
+/// assert!(f.value(&[2.0, 0.0, 0.0]) < 0.0); // outside: negative
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct InterpolantView<'a, T: Real, const D: usize> {
+    pub(crate) kernel: Kernel,
+    pub(crate) centres: &'a [[T; D]],
+    pub(crate) weights: &'a [T],
+    pub(crate) constant: T,
+    pub(crate) linear: [T; D],
+}
+
+/// Two slices that must have the same length do not.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("length mismatch: {what} has {found} entries where {expected} were expected")]
+pub struct LengthMismatch {
+    /// Which argument was wrong.
+    pub what: &'static str,
+    /// The length it should have had.
+    pub expected: usize,
+    /// The length it had.
+    pub found: usize,
+}
+
+impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
+    /// A view over centres, one weight per centre, and the affine part `constant + linear·x`.
+    ///
+    /// `const`, so that a model baked into constant arrays is itself a constant.
+    pub const fn new(
+        kernel: Kernel,
+        centres: &'a [[T; D]],
+        weights: &'a [T],
+        constant: T,
+        linear: [T; D],
+    ) -> Result<Self, LengthMismatch> {
+        if centres.len() != weights.len() {
+            return Err(LengthMismatch {
+                what: "weights",
+                expected: centres.len(),
+                found: weights.len(),
+            });
+        }
+        Ok(Self {
+            kernel,
+            centres,
+            weights,
+            constant,
+            linear,
+        })
+    }
+
+    /// The kernel φ.
+    pub const fn kernel(&self) -> Kernel {
+        self.kernel
+    }
+    /// The centres cⱼ.
+    pub const fn centres(&self) -> &'a [[T; D]] {
+        self.centres
+    }
+    /// The weights wⱼ.
+    pub const fn weights(&self) -> &'a [T] {
+        self.weights
+    }
+    /// The constant term a of the affine part.
+    pub const fn constant(&self) -> T {
+        self.constant
+    }
+    /// The linear coefficients b of the affine part.
+    pub const fn linear(&self) -> [T; D] {
+        self.linear
+    }
+
+    #[inline(always)]
+    fn affine(&self, x: &[T; D]) -> T {
+        let mut v = self.constant;
+        for d in 0..D {
+            v += self.linear[d] * x[d];
+        }
+        v
+    }
+
+    /// f(x). Positive inside, negative outside, zero on the surface.
+    pub fn value(&self, x: &[T; D]) -> T {
+        with_radial!(self.kernel, K => self.value_with::<K>(x))
+    }
+
+    #[inline(always)]
+    fn value_with<K: Radial>(&self, x: &[T; D]) -> T {
+        let mut sum = T::ZERO;
+        for (c, &w) in self.centres.iter().zip(self.weights) {
+            let mut r2 = T::ZERO;
+            for d in 0..D {
+                let t = x[d] - c[d];
+                r2 += t * t;
+            }
+            sum += w * K::phi_r2(r2);
+        }
+        sum + self.affine(x)
+    }
+
+    /// f(x) and its gradient ∇f(x). At a centre of the r kernel the centre's own (undefined)
+    /// term is left out of the gradient.
+    ///
+    /// ```
+    /// # use rbf_core::{InterpolantView, Kernel};
+    /// let f = InterpolantView::new(Kernel::Cubic, &[[0.0, 0.0]], &[-1.0], 1.0, [0.0; 2]).unwrap();
+    /// let (v, g) = f.value_and_gradient(&[1.0, 0.0]);
+    /// assert_eq!((v, g), (0.0, [-3.0, 0.0])); // ∇(1 − r³) = −3r² x̂
+    /// ```
+    pub fn value_and_gradient(&self, x: &[T; D]) -> (T, [T; D]) {
+        with_radial!(self.kernel, K => self.value_gradient_with::<K>(x))
+    }
+
+    #[inline(always)]
+    fn value_gradient_with<K: Radial>(&self, x: &[T; D]) -> (T, [T; D]) {
+        let mut sum = T::ZERO;
+        let mut grad = self.linear;
+        for (c, &w) in self.centres.iter().zip(self.weights) {
+            let mut t = [T::ZERO; D];
+            let mut r2 = T::ZERO;
+            for d in 0..D {
+                t[d] = x[d] - c[d];
+                r2 += t[d] * t[d];
+            }
+            let (phi, g, _) = K::terms_r2(r2);
+            sum += w * phi;
+            let wg = w * g;
+            for d in 0..D {
+                grad[d] += wg * t[d];
+            }
+        }
+        (sum + self.affine(x), grad)
+    }
+
+    /// The gradient ∇f(x) alone.
+    pub fn gradient(&self, x: &[T; D]) -> [T; D] {
+        self.value_and_gradient(x).1
+    }
+
+    /// f(x), ∇f(x) and the Hessian ∇²f(x) (row-major, symmetric). At a centre of the r and
+    /// r² log r kernels, where φ has no second derivative, that centre's term is left out.
+    ///
+    /// ```
+    /// # use rbf_core::{InterpolantView, Kernel};
+    /// let f = InterpolantView::new(Kernel::Cubic, &[[0.0, 0.0]], &[1.0], 0.0, [0.0; 2]).unwrap();
+    /// let (_, _, h) = f.value_gradient_hessian(&[2.0, 0.0]);
+    /// assert_eq!(h, [[12.0, 0.0], [0.0, 6.0]]); // φ″ = 6r along x̂, φ′/r = 3r across
+    /// ```
+    pub fn value_gradient_hessian(&self, x: &[T; D]) -> (T, [T; D], [[T; D]; D]) {
+        with_radial!(self.kernel, K => self.hessian_with::<K>(x))
+    }
+
+    #[inline(always)]
+    fn hessian_with<K: Radial>(&self, x: &[T; D]) -> (T, [T; D], [[T; D]; D]) {
+        let mut sum = T::ZERO;
+        let mut grad = self.linear;
+        let mut hess = [[T::ZERO; D]; D];
+        for (c, &w) in self.centres.iter().zip(self.weights) {
+            let mut t = [T::ZERO; D];
+            let mut r2 = T::ZERO;
+            for d in 0..D {
+                t[d] = x[d] - c[d];
+                r2 += t[d] * t[d];
+            }
+            let (phi, g, h) = K::terms_r2(r2);
+            sum += w * phi;
+            let wg = w * g;
+            let wh = w * h;
+            for a in 0..D {
+                grad[a] += wg * t[a];
+                hess[a][a] += wg;
+                for b in 0..D {
+                    hess[a][b] += wh * t[a] * t[b];
+                }
+            }
+        }
+        (sum + self.affine(x), grad, hess)
+    }
+
+    /// f at many points: `out[i] = f(points[i])`. Points are taken eight at a time so that the
+    /// compiler can vectorize across them. Allocation-free.
+    ///
+    /// ```
+    /// # use rbf_core::{InterpolantView, Kernel};
+    /// let f = InterpolantView::new(Kernel::Cubic, &[[0.0, 0.0, 0.0]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+    /// let pts = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 2.0, 0.0]];
+    /// let mut out = [0.0; 3];
+    /// f.values(&pts, &mut out).unwrap();
+    /// assert_eq!(out, [1.0, 0.0, -7.0]);
+    /// ```
+    pub fn values(&self, points: &[[T; D]], out: &mut [T]) -> Result<(), LengthMismatch> {
+        if points.len() != out.len() {
+            return Err(LengthMismatch {
+                what: "output",
+                expected: points.len(),
+                found: out.len(),
+            });
+        }
+        with_radial!(self.kernel, K => self.values_with::<K>(points, out));
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn values_with<K: Radial>(&self, points: &[[T; D]], out: &mut [T]) {
+        let mut chunks = points.chunks_exact(LANES);
+        let mut outs = out.chunks_exact_mut(LANES);
+        for (pts, o) in (&mut chunks).zip(&mut outs) {
+            let mut lanes = [[T::ZERO; LANES]; D];
+            for (l, p) in pts.iter().enumerate() {
+                for d in 0..D {
+                    lanes[d][l] = p[d];
+                }
+            }
+            let sums = self.block_sums::<K>(&lanes);
+            for (l, p) in pts.iter().enumerate() {
+                o[l] = sums[l] + self.affine(p);
+            }
+        }
+        for (p, o) in chunks.remainder().iter().zip(outs.into_remainder()) {
+            *o = self.value_with::<K>(p);
+        }
+    }
+
+    /// Σⱼ wⱼ φ(|xₗ − cⱼ|) for a block of points given coordinate by coordinate.
+    #[inline(always)]
+    fn block_sums<K: Radial>(&self, lanes: &[[T; LANES]; D]) -> [T; LANES] {
+        let mut acc = [T::ZERO; LANES];
+        for (c, &w) in self.centres.iter().zip(self.weights) {
+            let mut r2 = [T::ZERO; LANES];
+            for d in 0..D {
+                for l in 0..LANES {
+                    let t = lanes[d][l] - c[d];
+                    r2[l] += t * t;
+                }
+            }
+            for l in 0..LANES {
+                acc[l] += w * K::phi_r2(r2[l]);
+            }
+        }
+        acc
+    }
+
+    /// f and ∇f at many points. Allocation-free.
+    pub fn values_and_gradients(
+        &self,
+        points: &[[T; D]],
+        values: &mut [T],
+        gradients: &mut [[T; D]],
+    ) -> Result<(), LengthMismatch> {
+        for (what, found) in [("values", values.len()), ("gradients", gradients.len())] {
+            if found != points.len() {
+                return Err(LengthMismatch {
+                    what,
+                    expected: points.len(),
+                    found,
+                });
+            }
+        }
+        with_radial!(self.kernel, K => {
+            for ((p, v), g) in points.iter().zip(values).zip(gradients) {
+                (*v, *g) = self.value_gradient_with::<K>(p);
+            }
+        });
+        Ok(())
+    }
+}
