@@ -1,1 +1,66 @@
+//! Shared workloads of the benchmarks, identical to those of `../shared/peers/peer_rbf.py`, so
+//! that criterion figures and peer figures describe the same work.
 
+use rbf_core::Constraint;
+
+/// A small deterministic generator (SplitMix64), so that benchmarks need no extra crate.
+pub struct Rng(u64);
+
+impl Rng {
+    /// A generator from a seed.
+    pub fn new(seed: u64) -> Self {
+        Self(seed)
+    }
+    /// A uniform number in [0, 1).
+    pub fn uniform(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// A standard normal number (Box–Muller).
+    pub fn normal(&mut self) -> f64 {
+        let u = self.uniform().max(1e-300);
+        let v = self.uniform();
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    }
+}
+
+/// The peers' workload: K/2 random points on the unit sphere (f = 0) and each one moved 0.01
+/// inward (f = 1): K value constraints, as `make_constraints` in `peer_rbf.py`.
+pub fn sphere_constraints(k: usize, seed: u64) -> Vec<Constraint<3>> {
+    let mut rng = Rng::new(seed);
+    let n = k / 2;
+    let dirs: Vec<[f64; 3]> = (0..n)
+        .map(|_| {
+            let v = [rng.normal(), rng.normal(), rng.normal()];
+            let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            [v[0] / l, v[1] / l, v[2] / l]
+        })
+        .collect();
+    let on = dirs.iter().map(|&d| Constraint::boundary(d));
+    let inside = dirs
+        .iter()
+        .map(|d| Constraint::interior(d.map(|x| x * 0.99), 1.0));
+    on.chain(inside).collect()
+}
+
+/// The peers' evaluation grid: `n`³ points spanning [−1.1, 1.1]³.
+pub fn grid(n: usize) -> Vec<[f64; 3]> {
+    let step = 2.2 / (n.max(2) - 1) as f64;
+    let mut out = Vec::with_capacity(n * n * n);
+    for i in 0..n {
+        for j in 0..n {
+            for k in 0..n {
+                out.push([
+                    -1.1 + i as f64 * step,
+                    -1.1 + j as f64 * step,
+                    -1.1 + k as f64 * step,
+                ]);
+            }
+        }
+    }
+    out
+}

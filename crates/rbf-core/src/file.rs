@@ -284,7 +284,9 @@ impl<const D: usize> Model<D> {
             .map(|(i, c)| array::<D>(c, &format!("centre {i}")))
             .collect::<Result<Vec<_>, _>>()?;
         if !file.weights.iter().all(|w| w.is_finite()) || !file.constant.is_finite() {
-            return Err(FileError::Invalid("a weight or the constant is not finite".into()));
+            return Err(FileError::Invalid(
+                "a weight or the constant is not finite".into(),
+            ));
         }
         let linear = array::<D>(&file.linear, "`linear`")?;
         let interpolant =
@@ -305,7 +307,12 @@ impl<const D: usize> Model<D> {
                     interpolant.centres().len()
                 )));
             }
-            for (i, (a, b)) in system.points().iter().zip(interpolant.centres()).enumerate() {
+            for (i, (a, b)) in system
+                .points()
+                .iter()
+                .zip(interpolant.centres())
+                .enumerate()
+            {
                 let tol = 1e-9 * system.scale();
                 if a.iter().zip(b).any(|(x, y)| (x - y).abs() > tol) {
                     return Err(FileError::Invalid(format!(

@@ -188,11 +188,7 @@ impl Radial for ThinPlateRadial {
     fn terms_r2<T: Real>(r2: T) -> (T, T, T) {
         if r2 > T::ZERO {
             let l = r2.ln();
-            (
-                T::from_f64(0.5) * r2 * l,
-                l + T::ONE,
-                T::from_f64(2.0) / r2,
-            )
+            (T::from_f64(0.5) * r2 * l, l + T::ONE, T::from_f64(2.0) / r2)
         } else {
             (T::ZERO, T::ZERO, T::ZERO)
         }
@@ -233,7 +229,10 @@ mod tests {
                 assert!((phi - k.phi(r)).abs() < 1e-12, "{k:?}");
                 assert!((phi2 - k.phi(r)).abs() < 1e-12, "{k:?}");
                 assert!((g - k.dphi(r) / r).abs() < 1e-12, "{k:?}");
-                assert!((h - (k.d2phi(r) - k.dphi(r) / r) / (r * r)).abs() < 1e-12, "{k:?}");
+                assert!(
+                    (h - (k.d2phi(r) - k.dphi(r) / r) / (r * r)).abs() < 1e-12,
+                    "{k:?}"
+                );
             }
         }
     }

@@ -44,7 +44,10 @@ pub fn project_to_surface<const D: usize>(
         let g2: f64 = g.iter().map(|c| c * c).sum();
         let gn = norm(&g);
         if !(gn > 0.0) || !v.is_finite() {
-            return Err(KnotError::NotOnSurface { distance, steps: step });
+            return Err(KnotError::NotOnSurface {
+                distance,
+                steps: step,
+            });
         }
         distance = v.abs() / gn;
         if distance <= tolerance {

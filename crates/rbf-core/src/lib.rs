@@ -78,7 +78,7 @@ mod text;
 pub use {
     condition::estimate_inverse_norm1,
     constraint::{Constraint, ConstraintKind, NormalOffset, RowSource},
-    dense::{finish, fit, solve_dense},
+    dense::{finish, finish_with, fit, solve_dense},
     error::FitError,
     fit::{Fit, FitReport, SolveMethod},
     interpolant::Interpolant,

@@ -5,8 +5,7 @@ use alloc::vec::Vec;
 
 use crate::kernel::{Radial, with_radial};
 use crate::{
-    Constraint, ConstraintKind, FitError, FitSettings, Interpolant, Kernel, NormalOffset,
-    RowSource,
+    Constraint, ConstraintKind, FitError, FitSettings, Interpolant, Kernel, NormalOffset, RowSource,
 };
 
 /// The rows of a fit, checked and ready to assemble.
@@ -248,15 +247,23 @@ impl<const D: usize> System<D> {
     /// The relative residual of an interpolant with these centres:
     /// max |f(cᵢ) + λᵢ wᵢ − hᵢ| / max |hᵢ|, with f, c and λ in the caller's units.
     pub fn relative_residual(&self, f: &Interpolant<f64, D>) -> f64 {
-        let view = f.view();
+        let mut fx = alloc::vec![0.0; self.points.len()];
+        if f.values(&self.points, &mut fx).is_err() {
+            return f64::NAN;
+        }
+        self.residual_from_values(f, &fx)
+    }
+
+    /// [`System::relative_residual`] given `fx[i]` = f(cᵢ), computed by the caller (perhaps in
+    /// parallel).
+    pub fn residual_from_values(&self, f: &Interpolant<f64, D>, fx: &[f64]) -> f64 {
         let mut worst = 0.0_f64;
-        let mut out = [0.0];
-        for (i, p) in self.points.iter().enumerate() {
-            // A one-point batch cannot have mismatched lengths.
-            if view.values(core::slice::from_ref(p), &mut out).is_ok() {
-                let r = out[0] + self.smoothing[i] * f.weights()[i] - self.values[i];
-                worst = if r.is_nan() { f64::NAN } else { worst.max(r.abs()) };
+        for (i, (&v, &w)) in fx.iter().zip(f.weights()).enumerate() {
+            let r = v + self.smoothing[i] * w - self.values[i];
+            if r.is_nan() {
+                return f64::NAN;
             }
+            worst = worst.max(r.abs());
         }
         worst / self.max_abs_value()
     }

@@ -209,6 +209,7 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
     /// f.values(&pts, &mut out).unwrap();
     /// assert_eq!(out, [1.0, 0.0, -7.0]);
     /// ```
+    #[inline(always)]
     pub fn values(&self, points: &[[T; D]], out: &mut [T]) -> Result<(), LengthMismatch> {
         if points.len() != out.len() {
             return Err(LengthMismatch {
