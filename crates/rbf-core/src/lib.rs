@@ -86,7 +86,7 @@ pub use {
     model::Model,
     settings::FitSettings,
     system::System,
-    text::{ParseError, parse_constraints},
+    text::{ParseError, parse_constraints, parse_points},
 };
 
 #[cfg(feature = "serde")]

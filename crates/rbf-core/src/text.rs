@@ -86,3 +86,51 @@ pub fn parse_constraints<const D: usize>(text: &str) -> Result<Vec<Constraint<D>
     }
     Ok(out)
 }
+
+/// Reads points, one per line: D numbers separated by spaces, tabs or commas; lines that are
+/// empty or start with `#` are skipped.
+///
+/// ```
+/// let pts = rbf_core::parse_points::<2>("# x y\n0 1\n2,3\n").unwrap();
+/// assert_eq!(pts, vec![[0.0, 1.0], [2.0, 3.0]]);
+/// assert_eq!(rbf_core::parse_points::<2>("1 2 3").unwrap_err().line, 1);
+/// ```
+pub fn parse_points<const D: usize>(text: &str) -> Result<Vec<[f64; D]>, ParseError> {
+    let mut out = Vec::new();
+    for (index, raw) in text.lines().enumerate() {
+        let line = index + 1;
+        let body = raw.trim();
+        if body.is_empty() || body.starts_with('#') {
+            continue;
+        }
+        let mut p = [0.0; D];
+        let mut count = 0;
+        for token in body
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|t| !t.is_empty())
+        {
+            let v: f64 = token.parse().map_err(|_| ParseError {
+                line,
+                message: alloc::format!("`{token}` is not a number"),
+            })?;
+            if !v.is_finite() {
+                return Err(ParseError {
+                    line,
+                    message: alloc::format!("`{token}` is not a finite number"),
+                });
+            }
+            if count < D {
+                p[count] = v;
+            }
+            count += 1;
+        }
+        if count != D {
+            return Err(ParseError {
+                line,
+                message: alloc::format!("expected {D} coordinates, found {count}"),
+            });
+        }
+        out.push(p);
+    }
+    Ok(out)
+}

@@ -1,0 +1,187 @@
+//! `rbf fit`: constraints in, model file out.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressDrawTarget};
+use rbf_core::{Constraint, ConstraintFile, FitSettings, Model, NormalOffset, System};
+use rbf_solve::{SolveOptions, Strategy};
+
+use crate::KernelArg;
+use crate::failure::{BAD_INPUT, Failure, USAGE};
+use crate::io::{read_text, write_atomically};
+
+pub(crate) const HELP: &str = "\
+Input formats:
+  Text, one constraint per line (# starts a comment; spaces, tabs or commas separate):
+    3D:  x y z value       boundary if value = 0, interior if > 0, exterior if < 0
+         x y z nx ny nz    an oriented point: boundary + normal constraint
+    2D (--dim 2):  x y value   or   x y nx ny
+  JSON: {\"dim\": 3, \"lambda\": 0, \"constraints\": [
+           {\"kind\": \"boundary\", \"position\": [0, 0, 1]},
+           {\"kind\": \"interior\", \"position\": [0, 0, 0], \"value\": 1},
+           {\"kind\": \"exterior\", \"position\": [3, 3, 3], \"value\": -1},
+           {\"kind\": \"normal\", \"position\": [1, 0, 0], \"normal\": [1, 0, 0]}]}
+  (see the README for every field).
+
+Examples:
+  rbf fit points.txt -o model.json
+  rbf fit curve.txt --dim 2 -o curve.json
+  rbf fit scan.json --lambda 1e-4 -o smooth.json";
+
+#[derive(Args, Debug)]
+pub(crate) struct FitArgs {
+    /// Constraint file (JSON or text); `-` reads stdin.
+    input: PathBuf,
+    /// Model file to write (JSON).
+    #[arg(short, long, value_name = "MODEL.json")]
+    output: PathBuf,
+    /// Regularization λ ≥ 0 added to the diagonal: 0 interpolates exactly, larger is smoother.
+    #[arg(long, value_name = "L")]
+    lambda: Option<f64>,
+    /// Radial kernel [default: thin-plate in 2D, cubic in 3D].
+    #[arg(long, value_enum)]
+    kernel: Option<KernelArg>,
+    /// Dimension of a text input [default: 3, or the JSON file's].
+    #[arg(long, value_parser = clap::value_parser!(u8).range(2..=3))]
+    dim: Option<u8>,
+    /// Distance from a normal constraint to its inside point [default: 0.01 × the longest side
+    /// of the bounding box].
+    #[arg(long, value_name = "D")]
+    offset: Option<f64>,
+    /// Factorization of the linear system.
+    #[arg(long, value_enum, default_value_t = SolverArg::Auto)]
+    solver: SolverArg,
+}
+
+/// Factorizations by their command-line names.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum SolverArg {
+    /// Cholesky of the projected system; LBLᵀ, then LU, if needed.
+    Auto,
+    /// Cholesky of the projected system only.
+    Cholesky,
+    /// Bunch–Kaufman LBLᵀ of the projected system.
+    Lblt,
+    /// LU of the whole system.
+    Lu,
+}
+
+pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
+    let source = args.input.display().to_string();
+    let text = read_text(&args.input)?;
+    let mut settings = FitSettings::default();
+    if let Some(k) = args.kernel {
+        settings.kernel = Some(k.into());
+    }
+    let json = text.trim_start().starts_with('{');
+    let (dim, file) = if json {
+        let file = ConstraintFile::from_json(&text).map_err(|e| Failure::file(&source, &e))?;
+        let dim = file.dimension().map_err(|e| Failure::file(&source, &e))?;
+        if let Some(d) = args.dim {
+            if usize::from(d) != dim {
+                return Err(Failure::new(
+                    USAGE,
+                    format!("--dim {d} contradicts {source}, which is {dim}D"),
+                ));
+            }
+        }
+        settings = file.settings(settings);
+        (dim, Some(file))
+    } else {
+        (usize::from(args.dim.unwrap_or(3)), None)
+    };
+    if let Some(l) = args.lambda {
+        settings.lambda = l;
+    }
+    if let Some(o) = args.offset {
+        settings.normal_offset = NormalOffset::Absolute(o);
+    }
+    let options = SolveOptions {
+        strategy: match args.solver {
+            SolverArg::Auto => Strategy::Auto,
+            SolverArg::Cholesky => Strategy::Cholesky,
+            SolverArg::Lblt => Strategy::Lblt,
+            SolverArg::Lu => Strategy::Lu,
+        },
+        ..Default::default()
+    };
+    let job = Job {
+        source: &source,
+        text: &text,
+        file: file.as_ref(),
+        settings,
+        options,
+        quiet,
+        output: &args.output,
+    };
+    match dim {
+        2 => job.run::<2>(),
+        _ => job.run::<3>(),
+    }
+}
+
+struct Job<'a> {
+    source: &'a str,
+    text: &'a str,
+    file: Option<&'a ConstraintFile>,
+    settings: FitSettings,
+    options: SolveOptions,
+    quiet: bool,
+    output: &'a std::path::Path,
+}
+
+impl Job<'_> {
+    fn run<const D: usize>(&self) -> Result<(), Failure> {
+        let constraints: Vec<Constraint<D>> = match self.file {
+            Some(f) => f
+                .constraints()
+                .map_err(|e| Failure::file(self.source, &e))?,
+            None => rbf_core::parse_constraints(self.text)
+                .map_err(|e| Failure::new(BAD_INPUT, format!("{}: {e}", self.source)))?,
+        };
+        let start = Instant::now();
+        let system =
+            System::new(&constraints, &self.settings).map_err(|e| Failure::fit(self.source, &e))?;
+        let spinner = spinner(self.quiet, system.rows());
+        let fit = rbf_solve::solve(&system, &self.settings, &self.options);
+        spinner.finish_and_clear();
+        let fit = fit.map_err(|e| Failure::fit(self.source, &e))?;
+        let elapsed = start.elapsed();
+        let report = fit.report;
+        let model = Model {
+            constraints,
+            settings: self.settings,
+            interpolant: fit.interpolant,
+            report: Some(report),
+        };
+        write_atomically(self.output, model.to_json().as_bytes())?;
+        if !self.quiet {
+            eprintln!(
+                "fitted {} constraints ({} rows, {}D, {}) in {:.2} s: {:?}, residual {:.1e}, condition ≈ {:.1e}; wrote {}",
+                model.constraints.len(),
+                report.rows,
+                D,
+                model.interpolant.kernel().name(),
+                elapsed.as_secs_f64(),
+                report.method,
+                report.residual,
+                report.condition,
+                self.output.display()
+            );
+        }
+        Ok(())
+    }
+}
+
+/// A spinner on stderr while a fit runs, if stderr is a terminal and not `--quiet`.
+pub(crate) fn spinner(quiet: bool, rows: usize) -> ProgressBar {
+    let bar = ProgressBar::new_spinner();
+    if quiet {
+        bar.set_draw_target(ProgressDrawTarget::hidden());
+    }
+    bar.set_message(format!("solving a system of {rows} rows"));
+    bar.enable_steady_tick(Duration::from_millis(120));
+    bar
+}
