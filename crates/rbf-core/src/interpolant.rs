@@ -107,6 +107,10 @@ impl<T: Real, const D: usize> Interpolant<T, D> {
     pub fn value_and_gradient(&self, x: &[T; D]) -> (T, [T; D]) {
         self.view().value_and_gradient(x)
     }
+    /// ∇f(x); see [`InterpolantView::gradient`].
+    pub fn gradient(&self, x: &[T; D]) -> [T; D] {
+        self.view().gradient(x)
+    }
     /// f, ∇f and ∇²f at x; see [`InterpolantView::value_gradient_hessian`].
     pub fn value_gradient_hessian(&self, x: &[T; D]) -> (T, [T; D], [[T; D]; D]) {
         self.view().value_gradient_hessian(x)

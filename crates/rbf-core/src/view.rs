@@ -190,9 +190,15 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
             for a in 0..D {
                 grad[a] += wg * t[a];
                 hess[a][a] += wg;
-                for b in 0..D {
-                    hess[a][b] += wh * t[a] * t[b];
+                let wta = wh * t[a];
+                for b in a..D {
+                    hess[a][b] += wta * t[b];
                 }
+            }
+        }
+        for a in 0..D {
+            for b in 0..a {
+                hess[a][b] = hess[b][a];
             }
         }
         (sum + self.affine(x), grad, hess)

@@ -1,0 +1,8 @@
+//! Integration tests of rbf-core, in one binary.
+
+mod errors;
+mod figures;
+mod model_file;
+mod precision;
+mod properties;
+mod support;
