@@ -1,0 +1,289 @@
+//! The `rbf` binary end to end: results, exit codes and messages.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+fn rbf(args: &[&str], stdin: Option<&str>) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rbf"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    if let Some(text) = stdin {
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(text.as_bytes())
+            .unwrap();
+    } else {
+        drop(child.stdin.take());
+    }
+    child.wait_with_output().unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+const TETRAHEDRON: &str = "\
+# x y z value: the tetrahedron of paper 000, Figure 2, around an interior point
+0.57735 0.57735 0.57735 0
+0.57735 -0.57735 -0.57735 0
+-0.57735 0.57735 -0.57735 0
+-0.57735 -0.57735 0.57735 0
+0 0 0 1
+";
+
+#[test]
+fn fit_then_eval_text() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(dir.path(), "tet.txt", TETRAHEDRON);
+    let model = dir.path().join("m.json");
+    let o = rbf(
+        &[
+            "fit",
+            input.to_str().unwrap(),
+            "-o",
+            model.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("residual"));
+    let o = rbf(
+        &["eval", model.to_str().unwrap(), "-", "--gradient"],
+        Some("0 0 0\n0.57735 0.57735 0.57735\n3 0 0\n"),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let lines: Vec<Vec<f64>> = String::from_utf8(o.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| l.split_whitespace().map(|t| t.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(lines.len(), 3);
+    assert!(lines.iter().all(|l| l.len() == 4));
+    assert!((lines[0][0] - 1.0).abs() < 1e-9, "interior value");
+    assert!(lines[1][0].abs() < 1e-9, "on the surface");
+    assert!(lines[2][0] < 0.0, "outside");
+    assert!(lines[2][1] < 0.0, "f decreases outward");
+}
+
+#[test]
+fn fit_json_2d_with_every_kind() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(
+        dir.path(),
+        "c.json",
+        r#"{"dim": 2, "lambda": 0, "normal_offset": {"relative": 0.02}, "constraints": [
+            {"kind": "boundary", "position": [1, 0]},
+            {"kind": "boundary", "position": [-1, 0]},
+            {"kind": "normal", "position": [0, 1], "normal": [0, 1]},
+            {"kind": "normal", "position": [0, -1], "normal": [0, -1], "offset": 0.05, "value": 2},
+            {"kind": "interior", "position": [0, 0], "value": 1},
+            {"kind": "exterior", "position": [3, 3], "value": -1, "smoothing": 0.001}
+        ]}"#,
+    );
+    let model = dir.path().join("m.json");
+    let o = rbf(
+        &[
+            "fit",
+            input.to_str().unwrap(),
+            "-o",
+            model.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("8 rows, 2D, thin-plate"),
+        "{}",
+        stderr(&o)
+    );
+    let o = rbf(&["eval", model.to_str().unwrap(), "-"], Some("1 0\n0 0\n"));
+    let values: Vec<f64> = String::from_utf8(o.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| l.parse().unwrap())
+        .collect();
+    assert!(
+        values[0].abs() < 1e-9 && (values[1] - 1.0).abs() < 1e-9,
+        "{values:?}"
+    );
+}
+
+#[test]
+fn a_bad_line_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(dir.path(), "bad.txt", "0 0 0 1\n1 0 0 0\n0 1 zero 0\n");
+    let o = rbf(&["fit", input.to_str().unwrap(), "-o", "/dev/null"], None);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("bad.txt: line 3") && e.contains("`zero`"), "{e}");
+    let input = write(dir.path(), "short.txt", "0 0 0 1\n1 0 0\n");
+    let o = rbf(&["fit", input.to_str().unwrap(), "-o", "/dev/null"], None);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("line 2: expected 4 numbers"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn degenerate_inputs_exit_2_and_name_the_culprit() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (
+            "coplanar.txt",
+            "0 0 0 0\n1 0 0 0\n0 1 0 0\n1 1 0 1\n2 2 0 0\n",
+            "plane",
+        ),
+        (
+            "dup.txt",
+            "0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 1\n1 0 0 0\n",
+            "constraint 1 and constraint 4",
+        ),
+        ("few.txt", "0 0 0 1\n1 0 0 0\n", "at least 4"),
+        (
+            "zero.txt",
+            "0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n",
+            "value 0",
+        ),
+        ("nan.txt", "0 0 0 1\nNaN 0 0 0\n", "line 2"),
+        ("normal.txt", "0 0 0 1\n1 0 0 0 0 0\n", "zero length"),
+        ("empty.txt", "# nothing\n", "at least 4"),
+    ];
+    for (name, text, expected) in cases {
+        let input = write(dir.path(), name, text);
+        let out = dir.path().join("never.json");
+        let o = rbf(
+            &["fit", input.to_str().unwrap(), "-o", out.to_str().unwrap()],
+            None,
+        );
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
+        assert!(stderr(&o).contains(expected), "{name}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"));
+        assert!(!out.exists(), "{name}: no model is written");
+    }
+}
+
+#[test]
+fn malformed_json_and_models_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(
+        dir.path(),
+        "c.json",
+        "{\"constraints\": [\n {\"kind\": \"boundary\", \"position\": [1, 2]},\n {\"kind\": \"blob\"}]}",
+    );
+    let o = rbf(&["fit", input.to_str().unwrap(), "-o", "/dev/null"], None);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("line 3"), "{}", stderr(&o));
+    let model = write(
+        dir.path(),
+        "m.json",
+        "{\"format\": \"rbf-model\", \"version\": 7}",
+    );
+    let o = rbf(&["eval", model.to_str().unwrap(), "-"], Some("0 0 0\n"));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("version"), "{}", stderr(&o));
+    let o = rbf(&["eval", "/nonexistent/model.json", "-"], Some(""));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("/nonexistent/model.json"));
+}
+
+#[test]
+fn eval_checks_the_points_dimension() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(dir.path(), "tet.txt", TETRAHEDRON);
+    let model = dir.path().join("m.json");
+    assert!(
+        rbf(
+            &[
+                "fit",
+                input.to_str().unwrap(),
+                "-o",
+                model.to_str().unwrap(),
+                "-q"
+            ],
+            None
+        )
+        .status
+        .success()
+    );
+    let o = rbf(&["eval", model.to_str().unwrap(), "-"], Some("0 0\n"));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("line 1: expected 3 coordinates"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn usage_errors_exit_1_and_help_teaches() {
+    let o = rbf(&["fit"], None);
+    assert_eq!(o.status.code(), Some(1));
+    let o = rbf(
+        &["fit", "x.txt", "-o", "m.json", "--kernel", "gaussian"],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let o = rbf(&["fit", "--help"], None);
+    assert_eq!(o.status.code(), Some(0));
+    let help = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        help.contains("Examples:") && help.contains("x y z nx ny nz"),
+        "{help}"
+    );
+}
+
+#[test]
+fn lambda_and_kernel_options_reach_the_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(dir.path(), "tet.txt", TETRAHEDRON);
+    let model = dir.path().join("m.json");
+    let o = rbf(
+        &[
+            "fit",
+            input.to_str().unwrap(),
+            "-o",
+            model.to_str().unwrap(),
+            "--lambda",
+            "0.01",
+            "--kernel",
+            "linear",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&model).unwrap();
+    assert!(
+        text.contains("\"kernel\": \"linear\"") && text.contains("\"lambda\": 0.01"),
+        "{text}"
+    );
+    // Smoothed: the interior value is no longer met exactly.
+    let o = rbf(&["eval", model.to_str().unwrap(), "-"], Some("0 0 0\n"));
+    let v: f64 = String::from_utf8(o.stdout).unwrap().trim().parse().unwrap();
+    assert!(v > 0.0 && (v - 1.0).abs() > 1e-6, "{v}");
+}
+
+#[test]
+fn demo_runs_and_writes_models() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("demo");
+    let o = rbf(&["demo", "-o", out.to_str().unwrap()], None);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for name in ["figure2-blob.json", "sculpt-start.json", "torus-2000.json"] {
+        assert!(out.join(name).exists(), "{name}");
+    }
+}

@@ -1,0 +1,5 @@
+//! Integration tests of rbf-solve, in one binary.
+
+mod limits;
+mod scipy;
+mod strategies;
