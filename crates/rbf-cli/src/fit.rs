@@ -79,13 +79,13 @@ pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
     let (dim, file) = if json {
         let file = ConstraintFile::from_json(&text).map_err(|e| Failure::file(&source, &e))?;
         let dim = file.dimension().map_err(|e| Failure::file(&source, &e))?;
-        if let Some(d) = args.dim {
-            if usize::from(d) != dim {
-                return Err(Failure::new(
-                    USAGE,
-                    format!("--dim {d} contradicts {source}, which is {dim}D"),
-                ));
-            }
+        if let Some(d) = args.dim
+            && usize::from(d) != dim
+        {
+            return Err(Failure::new(
+                USAGE,
+                format!("--dim {d} contradicts {source}, which is {dim}D"),
+            ));
         }
         settings = file.settings(settings);
         (dim, Some(file))

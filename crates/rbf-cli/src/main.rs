@@ -82,14 +82,13 @@ fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
-    if let Some(n) = cli.threads {
-        if let Err(e) = rayon::ThreadPoolBuilder::new()
+    if let Some(n) = cli.threads
+        && let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build_global()
-        {
-            eprintln!("rbf: cannot start {n} threads: {e}");
-            return ExitCode::from(1);
-        }
+    {
+        eprintln!("rbf: cannot start {n} threads: {e}");
+        return ExitCode::from(1);
     }
     let result = match cli.command {
         Command::Fit(args) => fit::run(&args, cli.quiet),

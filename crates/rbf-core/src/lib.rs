@@ -36,6 +36,11 @@
 //! ```
 #![no_std]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+#![warn(
+    clippy::std_instead_of_core,
+    clippy::std_instead_of_alloc,
+    clippy::alloc_instead_of_core
+)]
 
 #[cfg(feature = "alloc")]
 extern crate alloc;

@@ -130,12 +130,15 @@ pub fn solve<const D: usize>(
     }
 }
 
+/// Solves the full normalized system for (h, g), giving (w, p).
+type FullSolve<'a> = dyn Fn(&[f64], &[f64]) -> (Vec<f64>, Vec<f64>) + 'a;
+
 /// Solves, refines, estimates the condition and checks, given a solver of the full system.
 fn run<const D: usize>(
     system: &System<D>,
     settings: &FitSettings,
     options: &SolveOptions,
-    solve: &dyn Fn(&[f64], &[f64]) -> (Vec<f64>, Vec<f64>),
+    solve: &FullSolve<'_>,
     method: SolveMethod,
     norm1: f64,
 ) -> Result<Fit<D>, FitError> {

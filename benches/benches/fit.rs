@@ -1,0 +1,38 @@
+//! Fitting time against K, on the peers' workload (`peer_rbf.py`): K/2 points on the unit
+//! sphere with value 0 and K/2 moved 0.01 inward with value 1, r³ kernel.
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use rbf_benches::sphere_constraints;
+use rbf_core::{FitSettings, System};
+use rbf_solve::{SolveOptions, Strategy};
+
+fn fit(c: &mut Criterion) {
+    let settings = FitSettings::default();
+    let mut group = c.benchmark_group("fit");
+    group.sample_size(10);
+    for k in [500_usize, 1000, 2000, 4000, 8000] {
+        let cs = sphere_constraints(k, 0);
+        group.bench_with_input(BenchmarkId::new("auto", k), &cs, |b, cs| {
+            b.iter(|| rbf_solve::fit(cs, &settings).expect("fit"))
+        });
+    }
+    // The alternatives the default chooses between, at one size.
+    let cs = sphere_constraints(2000, 0);
+    let system = System::new(&cs, &settings).expect("valid");
+    for (name, strategy) in [("lblt", Strategy::Lblt), ("lu", Strategy::Lu)] {
+        let options = SolveOptions {
+            strategy,
+            ..Default::default()
+        };
+        group.bench_function(BenchmarkId::new(name, 2000), |b| {
+            b.iter(|| rbf_solve::solve(&system, &settings, &options).expect("fit"))
+        });
+    }
+    group.bench_function(BenchmarkId::new("core-dense-lu", 2000), |b| {
+        b.iter(|| rbf_core::solve_dense(&system, &settings).expect("fit"))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, fit);
+criterion_main!(benches);
