@@ -50,6 +50,13 @@ pub(crate) struct FitArgs {
     /// of the bounding box].
     #[arg(long, value_name = "D")]
     offset: Option<f64>,
+    /// Two points closer than this fraction of the bounding box's longest side are an error
+    /// (coincident constraints make the system singular).
+    #[arg(long, value_name = "F", default_value_t = 1e-9)]
+    min_separation: f64,
+    /// Largest accepted residual max|f(cᵢ) − hᵢ| / max|hᵢ|; a fit that misses it fails.
+    #[arg(long, value_name = "R", default_value_t = 1e-6)]
+    max_residual: f64,
     /// Factorization of the linear system.
     #[arg(long, value_enum, default_value_t = SolverArg::Auto)]
     solver: SolverArg,
@@ -95,6 +102,8 @@ pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
     if let Some(l) = args.lambda {
         settings.lambda = l;
     }
+    settings.min_separation = args.min_separation;
+    settings.max_residual = args.max_residual;
     if let Some(o) = args.offset {
         settings.normal_offset = NormalOffset::Absolute(o);
     }

@@ -287,3 +287,43 @@ fn demo_runs_and_writes_models() {
         assert!(out.join(name).exists(), "{name}");
     }
 }
+
+#[test]
+fn numerical_failures_exit_3() {
+    let dir = tempfile::tempdir().unwrap();
+    // Two interior points 1e-14 apart with different values, the coincidence check disabled.
+    let input = write(
+        dir.path(),
+        "near.txt",
+        &format!("{TETRAHEDRON}0 0 1e-14 2\n"),
+    );
+    let o = rbf(
+        &[
+            "fit",
+            input.to_str().unwrap(),
+            "-o",
+            "/dev/null",
+            "--min-separation",
+            "0",
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).contains("condition"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_system_too_large_for_memory_exits_3_with_its_size() {
+    // 200 000 value constraints: a dense system of 320 GB, refused before any allocation.
+    let dir = tempfile::tempdir().unwrap();
+    let mut text = String::with_capacity(200_000 * 40);
+    for i in 0..200_000_u64 {
+        let (x, y, z) = (i % 100, (i / 100) % 100, i / 10_000);
+        text.push_str(&format!("{x} {y} {z} {}\n", if i == 0 { 1 } else { 0 }));
+    }
+    let input = write(dir.path(), "huge.txt", &text);
+    let o = rbf(&["fit", input.to_str().unwrap(), "-o", "/dev/null"], None);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("200000 rows needs") && e.contains("MiB"), "{e}");
+}

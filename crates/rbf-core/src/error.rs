@@ -91,7 +91,7 @@ pub enum FitError {
     },
     /// The dense system would not fit in memory.
     #[error(
-        "a system of {rows} rows needs {} MiB{}: use fewer constraints or a smaller resolution",
+        "a system of {rows} rows needs {} MiB{}: use fewer constraints (a subset, or a coarser conversion)",
         bytes / (1 << 20),
         AvailableNote(*available)
     )]

@@ -21,3 +21,24 @@ fn a_system_too_large_for_memory_is_refused_with_its_size() {
 fn a_system_that_fits_is_accepted() {
     assert!(rbf_solve::check_fits(1000, 2).is_ok());
 }
+
+#[test]
+fn fitting_a_system_too_large_for_memory_fails_before_allocating() {
+    use rbf_core::{Constraint, FitSettings};
+    let cs: Vec<Constraint<3>> = (0..200_000_u64)
+        .map(|i| {
+            let p = [
+                (i % 100) as f64,
+                ((i / 100) % 100) as f64,
+                (i / 10_000) as f64,
+            ];
+            if i == 0 {
+                Constraint::interior(p, 1.0)
+            } else {
+                Constraint::boundary(p)
+            }
+        })
+        .collect();
+    let e = rbf_solve::fit(&cs, &FitSettings::default()).unwrap_err();
+    assert!(matches!(e, FitError::TooLarge { rows: 200_000, .. }), "{e}");
+}
