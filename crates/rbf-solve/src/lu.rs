@@ -4,7 +4,7 @@ use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::{Mat, MatRef};
 use rbf_core::{FitError, System};
 
-use crate::memory::{check_fits, zeroed};
+use crate::memory::{check_fits, filled_matrix};
 
 /// LU of [Φ+Λ, P; Pᵀ, 0] (normalized).
 pub(crate) struct FullLu {
@@ -18,8 +18,7 @@ impl FullLu {
         let k = system.rows();
         let n = system.size();
         check_fits(n, 2)?;
-        let mut data = zeroed(n * n, n)?;
-        for (j, col) in data.chunks_exact_mut(n).enumerate() {
+        let data = filled_matrix(n, n, |j, col| {
             if j < k {
                 system.kernel_column(j, 0..k, &mut col[..k]);
                 col[k] = 1.0;
@@ -33,7 +32,7 @@ impl FullLu {
                     };
                 }
             }
-        }
+        })?;
         let norm1 = data
             .chunks_exact(n)
             .map(|c| c.iter().map(|v| v.abs()).sum::<f64>())

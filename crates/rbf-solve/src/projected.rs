@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use rbf_core::{FitError, System};
 
 use crate::householder::Reflector;
-use crate::memory::{check_fits, zeroed};
+use crate::memory::{check_fits, filled_matrix};
 
 /// How the projected block was factored.
 enum Factor {
@@ -61,18 +61,13 @@ impl Projected {
         let m = D + 1;
         let extra = if attempt == Attempt::Lblt { 2 } else { 1 };
         check_fits(k, extra).map_err(Some)?;
-        let mut data = zeroed(k * k, k).map_err(Some)?;
+        let mut data = filled_matrix(k, k, |j, col| system.kernel_column(j, 0..k, col))
+            .map_err(Some)?;
         let col_sums: Vec<f64> = data
-            .par_chunks_mut(k)
+            .par_chunks(k)
             .enumerate()
             .map(|(j, col)| {
-                system.kernel_column(j, 0..k, col);
-                let poly = 1.0
-                    + system
-                        .polynomial_row(j)
-                        .iter()
-                        .map(|v| v.abs())
-                        .sum::<f64>();
+                let poly = 1.0 + system.polynomial_row(j).iter().map(|v| v.abs()).sum::<f64>();
                 col.iter().map(|v| v.abs()).sum::<f64>() + poly
             })
             .collect();
