@@ -44,20 +44,25 @@ const TETRAHEDRON: &str = "\
 0 0 0 1
 ";
 
+/// Writes `text` to `name` in `dir` and fits it to `dir/m.json` with `extra` options.
+fn fit_file(dir: &Path, name: &str, text: &str, extra: &[&str]) -> (PathBuf, Output) {
+    let input = write(dir, name, text);
+    let model = dir.join("m.json");
+    let mut args = vec![
+        "fit",
+        input.to_str().unwrap(),
+        "-o",
+        model.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let o = rbf(&args, None);
+    (model, o)
+}
+
 #[test]
 fn fit_then_eval_text() {
     let dir = tempfile::tempdir().unwrap();
-    let input = write(dir.path(), "tet.txt", TETRAHEDRON);
-    let model = dir.path().join("m.json");
-    let o = rbf(
-        &[
-            "fit",
-            input.to_str().unwrap(),
-            "-o",
-            model.to_str().unwrap(),
-        ],
-        None,
-    );
+    let (model, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("residual"));
     let o = rbf(
@@ -204,22 +209,9 @@ fn malformed_json_and_models_exit_2() {
 #[test]
 fn eval_checks_the_points_dimension() {
     let dir = tempfile::tempdir().unwrap();
-    let input = write(dir.path(), "tet.txt", TETRAHEDRON);
-    let model = dir.path().join("m.json");
-    assert!(
-        rbf(
-            &[
-                "fit",
-                input.to_str().unwrap(),
-                "-o",
-                model.to_str().unwrap(),
-                "-q"
-            ],
-            None
-        )
-        .status
-        .success()
-    );
+    let (model, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &["-q"]);
+    assert!(o.status.success());
+    assert!(o.stderr.is_empty(), "--quiet prints nothing");
     let o = rbf(&["eval", model.to_str().unwrap(), "-"], Some("0 0\n"));
     assert_eq!(o.status.code(), Some(2));
     assert!(
@@ -250,20 +242,11 @@ fn usage_errors_exit_1_and_help_teaches() {
 #[test]
 fn lambda_and_kernel_options_reach_the_model() {
     let dir = tempfile::tempdir().unwrap();
-    let input = write(dir.path(), "tet.txt", TETRAHEDRON);
-    let model = dir.path().join("m.json");
-    let o = rbf(
-        &[
-            "fit",
-            input.to_str().unwrap(),
-            "-o",
-            model.to_str().unwrap(),
-            "--lambda",
-            "0.01",
-            "--kernel",
-            "linear",
-        ],
-        None,
+    let (model, o) = fit_file(
+        dir.path(),
+        "tet.txt",
+        TETRAHEDRON,
+        &["--lambda", "0.01", "--kernel", "linear"],
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&model).unwrap();

@@ -157,7 +157,6 @@ pub fn finish_with<const D: usize>(
 
 /// The whole normalized system [Φ + Λ, P; Pᵀ, 0], column-major.
 fn assemble<const D: usize>(system: &System<D>) -> Result<DMatrix<f64>, FitError> {
-    let k = system.rows();
     let n = system.size();
     let too_large = || FitError::TooLarge {
         rows: n,
@@ -172,19 +171,7 @@ fn assemble<const D: usize>(system: &System<D>) -> Result<DMatrix<f64>, FitError
     data.shrink_to(entries);
     data.resize(entries, 0.0);
     for (j, col) in data.chunks_exact_mut(n).enumerate() {
-        if j < k {
-            system.kernel_column(j, 0..k, &mut col[..k]);
-            col[k] = 1.0;
-            col[k + 1..].copy_from_slice(&system.polynomial_row(j));
-        } else {
-            for (i, v) in col[..k].iter_mut().enumerate() {
-                *v = if j == k {
-                    1.0
-                } else {
-                    system.polynomial_row(i)[j - k - 1]
-                };
-            }
-        }
+        system.system_column(j, col);
     }
     Ok(DMatrix::from_vec(n, n, data))
 }

@@ -200,6 +200,22 @@ impl<const D: usize> System<D> {
         }
     }
 
+    /// Writes column `j` (of `size()`) of the whole normalized system
+    /// [Φ + Λ, P; Pᵀ, 0] into `out` (length `size()`).
+    pub fn system_column(&self, j: usize, out: &mut [f64]) {
+        let k = self.rows();
+        if j < k {
+            self.kernel_column(j, 0..k, &mut out[..k]);
+            out[k] = 1.0;
+            out[k + 1..].copy_from_slice(&self.normalized[j]);
+        } else {
+            for (v, p) in out[..k].iter_mut().zip(&self.normalized) {
+                *v = if j == k { 1.0 } else { p[j - k - 1] };
+            }
+            out[k..].fill(0.0);
+        }
+    }
+
     /// Row `i` of the normalized polynomial block: (1, x′ᵢ).
     pub fn polynomial_row(&self, i: usize) -> [f64; D] {
         self.normalized[i]

@@ -18,21 +18,7 @@ impl FullLu {
         let k = system.rows();
         let n = system.size();
         check_fits(n, 2)?;
-        let data = filled_matrix(n, n, |j, col| {
-            if j < k {
-                system.kernel_column(j, 0..k, &mut col[..k]);
-                col[k] = 1.0;
-                col[k + 1..].copy_from_slice(&system.polynomial_row(j));
-            } else {
-                for (i, v) in col[..k].iter_mut().enumerate() {
-                    *v = if j == k {
-                        1.0
-                    } else {
-                        system.polynomial_row(i)[j - k - 1]
-                    };
-                }
-            }
-        })?;
+        let data = filled_matrix(n, n, |j, col| system.system_column(j, col))?;
         let norm1 = data
             .chunks_exact(n)
             .map(|c| c.iter().map(|v| v.abs()).sum::<f64>())

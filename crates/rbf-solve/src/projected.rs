@@ -61,13 +61,18 @@ impl Projected {
         let m = D + 1;
         let extra = if attempt == Attempt::Lblt { 2 } else { 1 };
         check_fits(k, extra).map_err(Some)?;
-        let mut data = filled_matrix(k, k, |j, col| system.kernel_column(j, 0..k, col))
-            .map_err(Some)?;
+        let mut data =
+            filled_matrix(k, k, |j, col| system.kernel_column(j, 0..k, col)).map_err(Some)?;
         let col_sums: Vec<f64> = data
             .par_chunks(k)
             .enumerate()
             .map(|(j, col)| {
-                let poly = 1.0 + system.polynomial_row(j).iter().map(|v| v.abs()).sum::<f64>();
+                let poly = 1.0
+                    + system
+                        .polynomial_row(j)
+                        .iter()
+                        .map(|v| v.abs())
+                        .sum::<f64>();
                 col.iter().map(|v| v.abs()).sum::<f64>() + poly
             })
             .collect();
