@@ -205,7 +205,8 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
     }
 
     /// f at many points: `out[i] = f(points[i])`. Points are taken eight at a time so that the
-    /// compiler can vectorize across them. Allocation-free.
+    /// compiler can vectorize across them (with `std` on x86-64, in AVX-512 or AVX2 when the CPU
+    /// has them). Allocation-free.
     ///
     /// ```
     /// # use rbf_core::{InterpolantView, Kernel};
@@ -215,7 +216,6 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
     /// f.values(&pts, &mut out).unwrap();
     /// assert_eq!(out, [1.0, 0.0, -7.0]);
     /// ```
-    #[inline(always)]
     pub fn values(&self, points: &[[T; D]], out: &mut [T]) -> Result<(), LengthMismatch> {
         if points.len() != out.len() {
             return Err(LengthMismatch {
@@ -224,8 +224,45 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
                 found: out.len(),
             });
         }
-        with_radial!(self.kernel, K => self.values_with::<K>(points, out));
+        self.values_dispatch(points, out);
         Ok(())
+    }
+
+    /// With `std` on x86-64, runs the batch loop compiled for AVX-512 or AVX2 when the CPU has
+    /// them (detected at run time), so a portable binary uses the machine's full width.
+    #[inline(always)]
+    fn values_dispatch(&self, points: &[[T; D]], out: &mut [T]) {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        {
+            if std::is_x86_feature_detected!("avx512f") {
+                // SAFETY: the CPU supports AVX-512F, checked just above.
+                unsafe { self.values_avx512(points, out) };
+                return;
+            }
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                // SAFETY: the CPU supports AVX2 and FMA, checked just above.
+                unsafe { self.values_avx2(points, out) };
+                return;
+            }
+        }
+        self.values_portable(points, out);
+    }
+
+    #[inline(always)]
+    fn values_portable(&self, points: &[[T; D]], out: &mut [T]) {
+        with_radial!(self.kernel, K => self.values_with::<K>(points, out));
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
+    fn values_avx512(&self, points: &[[T; D]], out: &mut [T]) {
+        self.values_portable(points, out);
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx2,fma")]
+    fn values_avx2(&self, points: &[[T; D]], out: &mut [T]) {
+        self.values_portable(points, out);
     }
 
     #[inline(always)]

@@ -41,4 +41,4 @@ mod projected;
 
 pub use fit::{SolveOptions, Strategy, fit, solve};
 pub use memory::{available_memory, check_fits};
-pub use parallel::{par_values, values_widest};
+pub use parallel::par_values;

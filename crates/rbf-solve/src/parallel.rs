@@ -8,8 +8,8 @@ const CHUNK: usize = 512;
 
 /// `out[i] = f(points[i])`, in parallel over the rayon pool.
 ///
-/// On x86-64 the inner loop is compiled for AVX-512 and AVX2 as well and chosen at run time,
-/// so a portable binary runs at the machine's full width.
+/// Each thread runs [`InterpolantView::values`], which uses AVX-512 or AVX2 where the CPU has
+/// them.
 ///
 /// ```
 /// use rbf_core::{InterpolantView, Kernel};
@@ -34,49 +34,9 @@ pub fn par_values<T: Real, const D: usize>(
     points
         .par_chunks(CHUNK)
         .zip(out.par_chunks_mut(CHUNK))
-        .for_each(|(p, o)| values_widest(f, p, o));
+        .for_each(|(p, o)| {
+            // Chunks of equal lengths: this cannot fail.
+            let _ = f.values(p, o);
+        });
     Ok(())
-}
-
-/// f at points on this thread, with the widest instruction set available.
-pub fn values_widest<T: Real, const D: usize>(
-    f: &InterpolantView<'_, T, D>,
-    points: &[[T; D]],
-    out: &mut [T],
-) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU supports AVX-512F, checked just above.
-            unsafe { values_avx512(f, points, out) };
-            return;
-        }
-        if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-            // SAFETY: the CPU supports AVX2 and FMA, checked just above.
-            unsafe { values_avx2(f, points, out) };
-            return;
-        }
-    }
-    // Lengths are equal (callers slice them so), so this cannot fail.
-    let _ = f.values(points, out);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
-unsafe fn values_avx512<T: Real, const D: usize>(
-    f: &InterpolantView<'_, T, D>,
-    points: &[[T; D]],
-    out: &mut [T],
-) {
-    let _ = f.values(points, out);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn values_avx2<T: Real, const D: usize>(
-    f: &InterpolantView<'_, T, D>,
-    points: &[[T; D]],
-    out: &mut [T],
-) {
-    let _ = f.values(points, out);
 }
