@@ -1,5 +1,6 @@
 //! `rbf`: variational implicit surfaces from the shell.
 
+mod check;
 mod demo;
 mod eval;
 mod failure;
@@ -43,6 +44,9 @@ enum Command {
     /// Evaluate a model at points: one line per point, the value (then the gradient).
     #[command(after_help = eval::HELP)]
     Eval(eval::EvalArgs),
+    /// Check a mesh: holes, non-manifold edges and vertices, orientation, components, genus.
+    #[command(after_help = "Examples:\n  rbf check bunny.obj\n  rbf check scan.ply --json")]
+    Check(check::CheckArgs),
     /// Fit the built-in examples of the paper and report what it measured.
     #[command(after_help = "Example:\n  rbf demo -o demo-out")]
     Demo {
@@ -93,6 +97,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Fit(args) => fit::run(&args, cli.quiet),
         Command::Eval(args) => eval::run(&args),
+        Command::Check(args) => check::run(&args),
         Command::Demo { output } => demo::run(&output, cli.quiet),
     };
     match result {

@@ -310,3 +310,26 @@ fn a_system_too_large_for_memory_exits_3_with_its_size() {
     let e = stderr(&o);
     assert!(e.contains("200000 rows needs") && e.contains("MiB"), "{e}");
 }
+
+#[test]
+fn check_reports_a_mesh() {
+    let torus = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/torus.obj");
+    let o = rbf(&["check", torus], None);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        text.contains("genus 1") && text.contains("watertight: yes"),
+        "{text}"
+    );
+    let o = rbf(&["check", torus, "--json"], None);
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        text.contains("\"genus\":1") && text.contains("\"watertight\":true"),
+        "{text}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let bad = write(dir.path(), "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+    let o = rbf(&["check", bad.to_str().unwrap()], None);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("bad.obj: line 3"), "{}", stderr(&o));
+}

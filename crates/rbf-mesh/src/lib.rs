@@ -1,0 +1,29 @@
+//! # rbf-mesh
+//!
+//! Triangle meshes for variational implicit surfaces: [`TriMesh`] with the checks a user needs
+//! before trusting a mesh ([`TriMesh::check`]: holes, non-manifold edges and vertices,
+//! orientation, components, genus, degenerate faces), and reading and writing OBJ, PLY and STL
+//! with errors that name the file and the line or byte.
+//!
+//! ```
+//! use rbf_mesh::TriMesh;
+//! // A tetrahedron, faces counter-clockwise from outside.
+//! let m = TriMesh::new(
+//!     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+//!     vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+//! )
+//! .unwrap();
+//! let r = m.check();
+//! assert!(r.is_watertight() && r.components == 1 && r.euler_characteristic == 2);
+//! assert!((m.volume() - 1.0 / 6.0).abs() < 1e-15);
+//! ```
+
+mod check;
+mod error;
+mod io;
+mod mesh;
+
+pub use check::MeshReport;
+pub use error::{Location, MeshError};
+pub use io::{read_mesh, read_mesh_bytes, write_mesh};
+pub use mesh::TriMesh;
