@@ -25,7 +25,7 @@ pub struct MeshReport {
     pub non_manifold_vertices: usize,
     /// Edges shared by two triangles that traverse it in the same direction.
     pub inconsistent_edges: usize,
-    /// Triangles with a repeated vertex or zero area.
+    /// Triangles with a repeated vertex or exactly zero area.
     pub degenerate_triangles: usize,
     /// Triangles with the same three vertices as an earlier one.
     pub duplicate_triangles: usize,
@@ -83,7 +83,6 @@ impl TriMesh {
         let mut used = vec![false; n];
         let mut degenerate = 0;
         let (lo, hi) = self.bounding_box();
-        let scale = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
         let mut seen = HashMap::with_capacity(tris.len());
         let mut duplicates = 0;
         for (t, tri) in tris.iter().enumerate() {
@@ -91,11 +90,7 @@ impl TriMesh {
             for &v in tri {
                 used[v as usize] = true;
             }
-            if a == b
-                || b == c
-                || a == c
-                || norm(self.area_vector(t)) <= f64::EPSILON * scale * scale
-            {
+            if a == b || b == c || a == c || norm(self.area_vector(t)) == 0.0 {
                 degenerate += 1;
             }
             let mut key = *tri;

@@ -22,8 +22,13 @@ mod check;
 mod error;
 mod io;
 mod mesh;
+mod polygonize;
 
 pub use check::MeshReport;
 pub use error::{Location, MeshError};
 pub use io::{read_mesh, read_mesh_bytes, write_mesh};
 pub use mesh::TriMesh;
+pub use polygonize::{
+    BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, polygonize_continuation,
+    polygonize_grid, surface_seeds,
+};

@@ -2,6 +2,7 @@
 
 mod checks;
 mod formats;
+mod polygonize;
 
 use std::path::PathBuf;
 
@@ -33,4 +34,9 @@ pub fn octahedron() -> rbf_mesh::TriMesh {
         [0, 3, 5],
     ];
     rbf_mesh::TriMesh::new(p, t).unwrap()
+}
+
+/// Euclidean length.
+pub fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }

@@ -1,0 +1,245 @@
+//! Polygonizers (paper 000, §7.1): from an interpolant to a triangle mesh of its zero set.
+//!
+//! Both walk the same cube lattice and split each cube into six Kuhn tetrahedra, which fit
+//! together across cubes and have no ambiguous cases: the output is watertight and manifold
+//! wherever the surface is closed inside the box, with triangles facing outward (toward
+//! f < 0). Vertices are placed on the surface by root finding along lattice edges, normals are
+//! the normalized −∇f.
+
+mod bound;
+mod continuation;
+mod grid;
+mod lattice;
+mod roots;
+
+use rbf_core::{ConstraintKind, InterpolantView, Model};
+
+use crate::{MeshError, TriMesh};
+use lattice::{Lattice, MAX_CELLS};
+
+/// How fine the lattice is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Resolution {
+    /// The edge length of a cube.
+    CellSize(f64),
+    /// Cubes across the longest side of the box.
+    Cells(usize),
+}
+
+/// Settings of both polygonizers.
+///
+/// ```
+/// use rbf_mesh::{PolygonizeSettings, Resolution};
+/// let s = PolygonizeSettings { resolution: Resolution::Cells(128), ..Default::default() };
+/// assert_eq!(s.margin, 0.1);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PolygonizeSettings {
+    /// Lattice resolution; 64 cubes across by default.
+    pub resolution: Resolution,
+    /// The box to polygonize. By default the centres' bounding box grown by `margin`, then
+    /// grown further (up to eight times) while f > 0 anywhere on its faces, so that a closed
+    /// surface lies inside it.
+    pub bounds: Option<([f64; 3], [f64; 3])>,
+    /// Growth of the default box on each side, as a fraction of its longest side. 0.1.
+    pub margin: f64,
+    /// How the grid method decides that a block of 8³ cubes holds no surface.
+    pub skip: BlockSkip,
+    /// Rounds of root finding along each edge (Illinois regula falsi). 8.
+    pub root_iterations: usize,
+}
+
+impl Default for PolygonizeSettings {
+    fn default() -> Self {
+        Self {
+            resolution: Resolution::Cells(64),
+            bounds: None,
+            margin: 0.1,
+            skip: BlockSkip::Estimated,
+            root_iterations: 8,
+        }
+    }
+}
+
+/// How the grid polygonizer skips blocks of 8³ cubes without sampling them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BlockSkip {
+    /// Only when a Taylor bound from the kernel's derivatives and the weights proves f has one
+    /// sign in the block. Never misses surface, but the bound is loose for models with large,
+    /// cancelling weights (normal constraints), where it rarely skips.
+    Proven,
+    /// Also when f at the block's eight corners has one sign and |f| there exceeds the block's
+    /// diagonal times twice the largest |∇f| at the corners (the sampled-gradient heuristic of
+    /// paper 000, §7.2). Can miss a component smaller than a block. The default.
+    Estimated,
+    /// Sample every lattice point.
+    Never,
+}
+
+/// Figures of a polygonization.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PolygonizeStats {
+    /// Cubes along x, y, z.
+    pub cells: [usize; 3],
+    /// Lattice points where f was sampled (not counting root finding).
+    pub samples: usize,
+    /// Blocks of 8³ cubes skipped because the surface cannot cross them (grid method).
+    pub skipped_blocks: usize,
+}
+
+impl PolygonizeSettings {
+    fn lattice(&self, f: &InterpolantView<'_, f64, 3>) -> Result<Lattice, MeshError> {
+        let (lo, hi) = match self.bounds {
+            Some(b) => b,
+            None => automatic_bounds(f, self.margin),
+        };
+        let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+        if !(side > 0.0 && side.is_finite()) || lo.iter().chain(&hi).any(|v| !v.is_finite()) {
+            return Err(MeshError::Invalid(format!(
+                "the box {lo:?} – {hi:?} is empty or not finite"
+            )));
+        }
+        let h = match self.resolution {
+            Resolution::CellSize(h) => h,
+            Resolution::Cells(n) => side / n as f64,
+        };
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(MeshError::Invalid(format!(
+                "cell size {h} must be positive"
+            )));
+        }
+        let cells: [i64; 3] =
+            core::array::from_fn(|d| (((hi[d] - lo[d]) / h).ceil() as i64).max(1));
+        if cells.iter().any(|&c| c > MAX_CELLS) {
+            return Err(MeshError::Invalid(format!(
+                "{cells:?} cubes: at most {MAX_CELLS} along each side; use a larger cell size"
+            )));
+        }
+        Ok(Lattice {
+            origin: lo,
+            h,
+            cells,
+        })
+    }
+}
+
+/// The centres' bounding box grown by `margin`, then by a quarter of its size at a time
+/// (at most eight times) while f is positive somewhere on a 16 × 16 sampling of its faces, and
+/// then by a tenth.
+fn automatic_bounds(f: &InterpolantView<'_, f64, 3>, margin: f64) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for c in f.centres() {
+        for d in 0..3 {
+            lo[d] = lo[d].min(c[d]);
+            hi[d] = hi[d].max(c[d]);
+        }
+    }
+    let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    let side = if side > 0.0 { side } else { 1.0 };
+    lo = lo.map(|v| v - margin * side);
+    hi = hi.map(|v| v + margin * side);
+    const N: usize = 16;
+    for _ in 0..8 {
+        let mut points = Vec::with_capacity(6 * N * N);
+        for axis in 0..3 {
+            for end in [lo[axis], hi[axis]] {
+                let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+                for i in 0..N {
+                    for j in 0..N {
+                        let mut p = [0.0; 3];
+                        p[axis] = end;
+                        p[a] = lo[a] + (hi[a] - lo[a]) * i as f64 / (N - 1) as f64;
+                        p[b] = lo[b] + (hi[b] - lo[b]) * j as f64 / (N - 1) as f64;
+                        points.push(p);
+                    }
+                }
+            }
+        }
+        let mut values = vec![0.0; points.len()];
+        let _ = f.values(&points, &mut values);
+        let outside = values.iter().all(|&v| v <= 0.0);
+        // Grow by a quarter while the surface pokes out; once it does not, once more by a
+        // tenth, for bulges between the samples.
+        let by = if outside { 0.1 } else { 0.25 };
+        let grow: [f64; 3] = core::array::from_fn(|d| by * (hi[d] - lo[d]));
+        lo = core::array::from_fn(|d| lo[d] - grow[d]);
+        hi = core::array::from_fn(|d| hi[d] + grow[d]);
+        if outside {
+            break;
+        }
+    }
+    (lo, hi)
+}
+
+/// Polygonizes every component of f's zero set inside the box, sampling f coarse-to-fine:
+/// blocks of 8³ cubes that the surface cannot cross are skipped (see [`BlockSkip`]).
+///
+/// ```
+/// use rbf_core::{InterpolantView, Kernel};
+/// use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_grid};
+/// // f = 1 − |x|³: the unit sphere.
+/// let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+/// let s = PolygonizeSettings { bounds: Some(([-1.5; 3], [1.5; 3])), resolution: Resolution::Cells(20), ..Default::default() };
+/// let (mesh, _) = polygonize_grid(&f, &s).unwrap();
+/// let r = mesh.check();
+/// assert!(r.is_watertight() && r.genus == Some(0) && r.volume > 0.0);
+/// ```
+pub fn polygonize_grid(
+    f: &InterpolantView<'_, f64, 3>,
+    settings: &PolygonizeSettings,
+) -> Result<(TriMesh, PolygonizeStats), MeshError> {
+    let lattice = settings.lattice(f)?;
+    let (edges, tris, skipped) = grid::cells(f, &lattice, settings.skip);
+    let total_blocks: usize = lattice
+        .cells
+        .iter()
+        .map(|&c| ((c + 7) / 8) as usize)
+        .product();
+    let stats = PolygonizeStats {
+        cells: lattice.cells.map(|c| c as usize),
+        samples: (total_blocks - skipped) * 9 * 9 * 9,
+        skipped_blocks: skipped,
+    };
+    if tris.is_empty() {
+        return Err(MeshError::Invalid("no surface inside the box".into()));
+    }
+    Ok((
+        roots::assemble(f, &lattice, edges, tris, settings.root_iterations)?,
+        stats,
+    ))
+}
+
+/// Polygonizes the components of f's zero set reached from `seeds` (points on or near the
+/// surface) by continuation, evaluating f only near the surface.
+pub fn polygonize_continuation(
+    f: &InterpolantView<'_, f64, 3>,
+    seeds: &[[f64; 3]],
+    settings: &PolygonizeSettings,
+) -> Result<(TriMesh, PolygonizeStats), MeshError> {
+    let lattice = settings.lattice(f)?;
+    let (edges, tris, samples) = continuation::cells(f, &lattice, seeds);
+    let stats = PolygonizeStats {
+        cells: lattice.cells.map(|c| c as usize),
+        samples,
+        skipped_blocks: 0,
+    };
+    if tris.is_empty() {
+        return Err(MeshError::Invalid("no surface found near the seeds".into()));
+    }
+    Ok((
+        roots::assemble(f, &lattice, edges, tris, settings.root_iterations)?,
+        stats,
+    ))
+}
+
+/// Seeds for continuation from a model: its boundary constraints and the boundary points of its
+/// normal constraints, which lie on the surface by construction.
+pub fn surface_seeds(model: &Model<3>) -> Vec<[f64; 3]> {
+    model
+        .constraints
+        .iter()
+        .filter(|c| matches!(c.kind, ConstraintKind::Boundary | ConstraintKind::Normal))
+        .map(|c| c.position)
+        .collect()
+}

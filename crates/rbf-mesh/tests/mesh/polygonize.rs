@@ -1,0 +1,199 @@
+//! Polygonizers on closed test surfaces: watertight, right genus and components, vertices on
+//! the surface, outward normals.
+
+use rbf_core::{Constraint, FitSettings, Interpolant, InterpolantView, Kernel, Model, fit};
+use rbf_mesh::{
+    BlockSkip, PolygonizeSettings, Resolution, TriMesh, polygonize_continuation, polygonize_grid,
+    surface_seeds,
+};
+
+fn fibonacci(n: usize) -> impl Iterator<Item = [f64; 3]> {
+    (0..n).map(move |i| {
+        let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+        let t = i as f64 * 2.399_963;
+        let r = (1.0 - z * z).sqrt();
+        [r * t.cos(), r * t.sin(), z]
+    })
+}
+
+fn model(constraints: Vec<Constraint<3>>) -> Model<3> {
+    let settings = FitSettings::default();
+    let f = fit(&constraints, &settings).unwrap();
+    Model {
+        constraints,
+        settings,
+        interpolant: f.interpolant,
+        report: Some(f.report),
+    }
+}
+
+fn sphere_at(centre: [f64; 3], n: usize) -> Vec<Constraint<3>> {
+    fibonacci(n)
+        .map(|d| Constraint::normal([centre[0] + d[0], centre[1] + d[1], centre[2] + d[2]], d))
+        .collect()
+}
+
+fn torus(n: usize) -> Vec<Constraint<3>> {
+    let golden = (5f64.sqrt() - 1.0) / 2.0;
+    (0..n)
+        .map(|i| {
+            let u = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
+            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
+            let normal = [v.cos() * u.cos(), v.cos() * u.sin(), v.sin()];
+            let p = [
+                (1.0 + 0.4 * v.cos()) * u.cos(),
+                (1.0 + 0.4 * v.cos()) * u.sin(),
+                0.4 * v.sin(),
+            ];
+            Constraint::normal(p, normal)
+        })
+        .collect()
+}
+
+fn tetrahedron_blob() -> Vec<Constraint<3>> {
+    let s = 1.0 / 3f64.sqrt();
+    let mut cs: Vec<Constraint<3>> = [[s, s, s], [s, -s, -s], [-s, s, -s], [-s, -s, s]]
+        .map(Constraint::boundary)
+        .to_vec();
+    cs.push(Constraint::interior([0.0; 3], 1.0));
+    cs
+}
+
+/// Every property a polygonizer promises, checked on one mesh.
+fn assert_good(name: &str, f: &Interpolant<f64, 3>, mesh: &TriMesh, genus: i64, components: usize) {
+    let r = mesh.check();
+    assert!(r.is_watertight(), "{name}: {r:?}");
+    assert_eq!(r.genus, Some(genus), "{name}");
+    assert_eq!(r.components, components, "{name}");
+    assert_eq!(
+        (
+            r.duplicate_triangles,
+            r.degenerate_triangles,
+            r.unused_vertices
+        ),
+        (0, 0, 0),
+        "{name}"
+    );
+    assert!(r.volume > 0.0, "{name}: triangles face outward");
+    let (lo, hi) = r.bounding_box;
+    let diagonal = crate::norm([hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]]);
+    let normals = mesh.normals().unwrap();
+    for (p, n) in mesh.positions().iter().zip(normals) {
+        let (v, g) = f.value_and_gradient(p);
+        let distance = v.abs() / crate::norm(g);
+        assert!(
+            distance < 1e-6 * diagonal,
+            "{name}: vertex {p:?} is {distance:e} from the surface"
+        );
+        // Outward: against the gradient (f decreases outward).
+        assert!((crate::norm(*n) - 1.0).abs() < 1e-12);
+        assert!(n[0] * g[0] + n[1] * g[1] + n[2] * g[2] < 0.0);
+    }
+}
+
+fn settings(cells: usize) -> PolygonizeSettings {
+    PolygonizeSettings {
+        resolution: Resolution::Cells(cells),
+        ..Default::default()
+    }
+}
+
+#[test]
+fn sphere_by_both_methods() {
+    let m = model(sphere_at([0.0; 3], 150));
+    let f = m.interpolant.view();
+    let (grid, _) = polygonize_grid(&f, &settings(40)).unwrap();
+    assert_good("sphere/grid", &m.interpolant, &grid, 0, 1);
+    // Finer, most blocks lie away from the surface and are skipped; the surface is the same.
+    let (fine, stats) = polygonize_grid(&f, &settings(96)).unwrap();
+    assert_good("sphere/grid/96", &m.interpolant, &fine, 0, 1);
+    assert!(stats.skipped_blocks > 0, "{stats:?}");
+    let s = PolygonizeSettings {
+        skip: BlockSkip::Never,
+        ..settings(96)
+    };
+    let (all, _) = polygonize_grid(&f, &s).unwrap();
+    assert_eq!(all.triangles().len(), fine.triangles().len());
+    let volume = grid.check().volume;
+    assert!(
+        (volume - 4.0 / 3.0 * std::f64::consts::PI).abs() < 0.02 * volume,
+        "{volume}"
+    );
+    let (cont, _) = polygonize_continuation(&f, &surface_seeds(&m), &settings(40)).unwrap();
+    assert_good("sphere/continuation", &m.interpolant, &cont, 0, 1);
+    // The same lattice and cells: the same surface.
+    assert_eq!(cont.triangles().len(), grid.triangles().len());
+}
+
+#[test]
+fn torus_has_genus_one() {
+    let m = model(torus(400));
+    let f = m.interpolant.view();
+    let (grid, _) = polygonize_grid(&f, &settings(48)).unwrap();
+    assert_good("torus/grid", &m.interpolant, &grid, 1, 1);
+    let (cont, _) = polygonize_continuation(&f, &surface_seeds(&m), &settings(48)).unwrap();
+    assert_good("torus/continuation", &m.interpolant, &cont, 1, 1);
+}
+
+#[test]
+fn tetrahedron_blob_of_paper_000() {
+    let m = model(tetrahedron_blob());
+    let f = m.interpolant.view();
+    let (grid, _) = polygonize_grid(&f, &settings(30)).unwrap();
+    assert_good("blob/grid", &m.interpolant, &grid, 0, 1);
+    let (cont, _) = polygonize_continuation(&f, &surface_seeds(&m), &settings(30)).unwrap();
+    assert_good("blob/continuation", &m.interpolant, &cont, 0, 1);
+}
+
+#[test]
+fn two_components_are_both_found() {
+    let mut cs = sphere_at([0.0; 3], 100);
+    cs.extend(sphere_at([3.5, 0.0, 0.0], 100));
+    let m = model(cs);
+    let f = m.interpolant.view();
+    let (grid, _) = polygonize_grid(&f, &settings(60)).unwrap();
+    assert_good("two/grid", &m.interpolant, &grid, 0, 2);
+    let (cont, _) = polygonize_continuation(&f, &surface_seeds(&m), &settings(60)).unwrap();
+    assert_good("two/continuation", &m.interpolant, &cont, 0, 2);
+    // Seeded on one sphere only, continuation finds that one alone.
+    let (one, _) = polygonize_continuation(&f, &[[1.0, 0.0, 0.0]], &settings(60)).unwrap();
+    assert_eq!(one.check().components, 1);
+}
+
+#[test]
+fn zeros_exactly_at_lattice_points_open_no_holes() {
+    // f = 1 − |x|³ is exactly 0 at (±1, 0, 0) etc., which are lattice points here (h = 0.25).
+    let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+    let owned = Interpolant::new(Kernel::Cubic, vec![[0.0; 3]], vec![-1.0], 1.0, [0.0; 3]).unwrap();
+    let s = PolygonizeSettings {
+        bounds: Some(([-1.5; 3], [1.5; 3])),
+        resolution: Resolution::CellSize(0.25),
+        ..Default::default()
+    };
+    assert_eq!(f.value(&[1.0, 0.0, 0.0]), 0.0);
+    let (mesh, _) = polygonize_grid(&f, &s).unwrap();
+    assert_good("exact zeros", &owned, &mesh, 0, 1);
+}
+
+#[test]
+fn bad_settings_are_errors() {
+    let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+    for resolution in [
+        Resolution::CellSize(0.0),
+        Resolution::CellSize(f64::NAN),
+        Resolution::Cells(0),
+        Resolution::CellSize(1e-9),
+    ] {
+        let s = PolygonizeSettings {
+            resolution,
+            ..Default::default()
+        };
+        assert!(polygonize_grid(&f, &s).is_err(), "{resolution:?}");
+    }
+    let s = PolygonizeSettings {
+        bounds: Some(([5.0; 3], [6.0; 3])),
+        ..Default::default()
+    };
+    let e = polygonize_grid(&f, &s).unwrap_err();
+    assert!(e.to_string().contains("no surface"), "{e}");
+}
