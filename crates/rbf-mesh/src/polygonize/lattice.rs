@@ -117,35 +117,23 @@ pub(crate) fn cell_triangles(
                 cs.iter().map(|&c| corner(c)[d] as f64).sum::<f64>() / cs.len() as f64
             })
         };
-        // (triangles as corner pairs, a point inside, a point outside)
-        let (tris, from, to): (Vec<[(u8, u8); 3]>, [f64; 3], [f64; 3]) =
-            match (ins.len(), outs.len()) {
-                (1, 3) => {
-                    let a = ins[0];
-                    (
-                        vec![[(a, outs[0]), (a, outs[1]), (a, outs[2])]],
-                        centre(&ins),
-                        centre(&outs),
-                    )
-                }
-                (3, 1) => {
-                    let d = outs[0];
-                    (
-                        vec![[(ins[0], d), (ins[1], d), (ins[2], d)]],
-                        centre(&ins),
-                        centre(&outs),
-                    )
-                }
-                (2, 2) => {
-                    let (a, b, c, d) = (ins[0], ins[1], outs[0], outs[1]);
-                    (
-                        vec![[(a, c), (a, d), (b, d)], [(a, c), (b, d), (b, c)]],
-                        centre(&ins),
-                        centre(&outs),
-                    )
-                }
-                _ => continue,
-            };
+        // Triangles as pairs of corners (the edges their vertices lie on).
+        let tris: Vec<[(u8, u8); 3]> = match (ins.len(), outs.len()) {
+            (1, 3) => {
+                let a = ins[0];
+                vec![[(a, outs[0]), (a, outs[1]), (a, outs[2])]]
+            }
+            (3, 1) => {
+                let d = outs[0];
+                vec![[(ins[0], d), (ins[1], d), (ins[2], d)]]
+            }
+            (2, 2) => {
+                let (a, b, c, d) = (ins[0], ins[1], outs[0], outs[1]);
+                vec![[(a, c), (a, d), (b, d)], [(a, c), (b, d), (b, c)]]
+            }
+            _ => continue,
+        };
+        let (from, to) = (centre(&ins), centre(&outs));
         let direction = [to[0] - from[0], to[1] - from[1], to[2] - from[2]];
         for t in tris {
             let [p, q, r] = t.map(|(a, b)| mid(a, b));
