@@ -153,7 +153,10 @@ impl Job<'_> {
         let start = Instant::now();
         let system =
             System::new(&constraints, &self.settings).map_err(|e| Failure::fit(self.source, &e))?;
-        let spinner = spinner(self.quiet, system.rows());
+        let spinner = spinner(
+            self.quiet,
+            format!("solving a system of {} rows", system.rows()),
+        );
         let fit = rbf_solve::solve(&system, &self.settings, &self.options);
         spinner.finish_and_clear();
         let fit = fit.map_err(|e| Failure::fit(self.source, &e))?;
@@ -184,13 +187,13 @@ impl Job<'_> {
     }
 }
 
-/// A spinner on stderr while a fit runs, if stderr is a terminal and not `--quiet`.
-pub(crate) fn spinner(quiet: bool, rows: usize) -> ProgressBar {
+/// A spinner on stderr while a long step runs, if stderr is a terminal and not `--quiet`.
+pub(crate) fn spinner(quiet: bool, message: String) -> ProgressBar {
     let bar = ProgressBar::new_spinner();
     if quiet {
         bar.set_draw_target(ProgressDrawTarget::hidden());
     }
-    bar.set_message(format!("solving a system of {rows} rows"));
+    bar.set_message(message);
     bar.enable_steady_tick(Duration::from_millis(120));
     bar
 }

@@ -6,6 +6,7 @@ mod eval;
 mod failure;
 mod fit;
 mod io;
+mod mesh;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -44,6 +45,9 @@ enum Command {
     /// Evaluate a model at points: one line per point, the value (then the gradient).
     #[command(after_help = eval::HELP)]
     Eval(eval::EvalArgs),
+    /// Polygonize a model's surface into a triangle mesh (OBJ, PLY or STL).
+    #[command(after_help = mesh::HELP)]
+    Mesh(mesh::MeshArgs),
     /// Check a mesh: holes, non-manifold edges and vertices, orientation, components, genus.
     #[command(after_help = "Examples:\n  rbf check bunny.obj\n  rbf check scan.ply --json")]
     Check(check::CheckArgs),
@@ -98,6 +102,7 @@ fn main() -> ExitCode {
         Command::Fit(args) => fit::run(&args, cli.quiet),
         Command::Eval(args) => eval::run(&args),
         Command::Check(args) => check::run(&args),
+        Command::Mesh(args) => mesh::run(&args, cli.quiet),
         Command::Demo { output } => demo::run(&output, cli.quiet),
     };
     match result {

@@ -135,6 +135,8 @@ pub(crate) trait Radial {
     fn phi_r2<T: Real>(r2: T) -> T;
     /// (φ, φ′/r, (φ″ − φ′/r)/r²) as functions of r², each set to 0 where it is singular at r = 0.
     fn terms_r2<T: Real>(r2: T) -> (T, T, T);
+    /// (φ, φ′/r) as functions of r², the second set to 0 where it is singular at r = 0.
+    fn slope_r2<T: Real>(r2: T) -> (T, T);
 }
 
 pub(crate) struct CubicRadial;
@@ -156,6 +158,11 @@ impl Radial for CubicRadial {
         };
         (r2 * r, T::from_f64(3.0) * r, h)
     }
+    #[inline(always)]
+    fn slope_r2<T: Real>(r2: T) -> (T, T) {
+        let r = r2.sqrt();
+        (r2 * r, T::from_f64(3.0) * r)
+    }
 }
 
 impl Radial for LinearRadial {
@@ -171,6 +178,15 @@ impl Radial for LinearRadial {
             (r, g, -g / r2)
         } else {
             (T::ZERO, T::ZERO, T::ZERO)
+        }
+    }
+    #[inline(always)]
+    fn slope_r2<T: Real>(r2: T) -> (T, T) {
+        let r = r2.sqrt();
+        if r > T::ZERO {
+            (r, T::ONE / r)
+        } else {
+            (T::ZERO, T::ZERO)
         }
     }
 }
@@ -191,6 +207,15 @@ impl Radial for ThinPlateRadial {
             (T::from_f64(0.5) * r2 * l, l + T::ONE, T::from_f64(2.0) / r2)
         } else {
             (T::ZERO, T::ZERO, T::ZERO)
+        }
+    }
+    #[inline(always)]
+    fn slope_r2<T: Real>(r2: T) -> (T, T) {
+        if r2 > T::ZERO {
+            let l = r2.ln();
+            (T::from_f64(0.5) * r2 * l, l + T::ONE)
+        } else {
+            (T::ZERO, T::ZERO)
         }
     }
 }
@@ -225,6 +250,8 @@ mod tests {
         for k in [Kernel::Cubic, Kernel::Linear, Kernel::ThinPlate] {
             for &r in &[0.3_f64, 1.0, 2.5] {
                 let (phi, g, h) = with_radial!(k, K => K::terms_r2(r * r));
+                let (phi3, g3) = with_radial!(k, K => K::slope_r2(r * r));
+                assert_eq!((phi3, g3), (phi, g), "{k:?}");
                 let phi2 = with_radial!(k, K => K::phi_r2(r * r));
                 assert!((phi - k.phi(r)).abs() < 1e-12, "{k:?}");
                 assert!((phi2 - k.phi(r)).abs() < 1e-12, "{k:?}");

@@ -1,6 +1,6 @@
 //! What a user needs to know about a mesh before trusting it.
 
-use std::collections::HashMap;
+use crate::hash::FastMap;
 
 use crate::TriMesh;
 use crate::mesh::norm;
@@ -79,11 +79,13 @@ impl TriMesh {
         let n = self.positions().len();
         let tris = self.triangles();
         // Undirected edge → (triangle count, forward traversals a→b with a < b).
-        let mut edges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(tris.len() * 2);
+        let mut edges: FastMap<(u32, u32), (u32, u32)> = FastMap::default();
+        edges.reserve(tris.len() * 2);
         let mut used = vec![false; n];
         let mut degenerate = 0;
         let (lo, hi) = self.bounding_box();
-        let mut seen = HashMap::with_capacity(tris.len());
+        let mut seen = FastMap::default();
+        seen.reserve(tris.len());
         let mut duplicates = 0;
         for (t, tri) in tris.iter().enumerate() {
             let [a, b, c] = *tri;
@@ -134,7 +136,7 @@ impl TriMesh {
                 continue;
             }
             let mut uf = UnionFind::new(faces.len());
-            let mut by_other: HashMap<u32, usize> = HashMap::new();
+            let mut by_other: FastMap<u32, usize> = FastMap::default();
             for (i, &f) in faces.iter().enumerate() {
                 for &w in &tris[f as usize] {
                     if w as usize == v {
@@ -160,7 +162,7 @@ impl TriMesh {
             uf.union(b, c);
         }
         let vertices = used.iter().filter(|&&u| u).count();
-        let mut per_component: HashMap<u32, (i64, i64, i64)> = HashMap::new();
+        let mut per_component: FastMap<u32, (i64, i64, i64)> = FastMap::default();
         for (v, &u) in used.iter().enumerate() {
             if u {
                 per_component.entry(uf.find(v as u32)).or_default().0 += 1;

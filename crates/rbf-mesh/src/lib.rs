@@ -20,6 +20,7 @@
 
 mod check;
 mod error;
+mod hash;
 mod io;
 mod mesh;
 mod polygonize;

@@ -90,5 +90,15 @@ fn batch_values_equal_pointwise_values() {
             assert!((f.value(p) - v).abs() <= 1e-12 * (1.0 + v.abs()), "{k:?}");
         }
         assert!(f.values(&points, &mut out[1..]).is_err());
+        let mut grads = vec![[0.0; 3]; points.len()];
+        f.values_and_gradients(&points, &mut out, &mut grads)
+            .unwrap();
+        for ((p, v), g) in points.iter().zip(&out).zip(&grads) {
+            let (v1, g1) = f.value_and_gradient(p);
+            assert!((v1 - v).abs() <= 1e-12 * (1.0 + v.abs()), "{k:?}");
+            for d in 0..3 {
+                assert!((g1[d] - g[d]).abs() <= 1e-12 * (1.0 + g[d].abs()), "{k:?}");
+            }
+        }
     }
 }

@@ -1,12 +1,11 @@
 //! Continuation (Bloomenthal 1988): start at cells near points on the surface and crawl across
 //! the lattice through faces the surface crosses, evaluating f only near the surface.
 
-use std::collections::{HashMap, HashSet};
-
 use rbf_core::InterpolantView;
 
 use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
 use super::roots::par_values;
+use crate::hash::{FastMap, FastSet};
 
 /// The six face neighbours of a cell, and the corners (bits) on the shared face.
 const FACES: [([i64; 3], [u8; 4]); 6] = [
@@ -25,8 +24,8 @@ pub(crate) fn cells(
     lattice: &Lattice,
     seeds: &[[f64; 3]],
 ) -> (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize) {
-    let mut values: HashMap<[i64; 3], f64> = HashMap::new();
-    let mut visited: HashSet<[i64; 3]> = HashSet::new();
+    let mut values: FastMap<[i64; 3], f64> = FastMap::default();
+    let mut visited: FastSet<[i64; 3]> = FastSet::default();
     let mut frontier: Vec<[i64; 3]> = Vec::new();
     // Each seed starts the cells around it: a seed on the surface lies in or next to a cell
     // the surface crosses.
@@ -42,7 +41,7 @@ pub(crate) fn cells(
     let (mut edges, mut tris) = (Vec::new(), Vec::new());
     while !frontier.is_empty() {
         let mut needed: Vec<[i64; 3]> = Vec::new();
-        let mut queued: HashSet<[i64; 3]> = HashSet::new();
+        let mut queued: FastSet<[i64; 3]> = FastSet::default();
         for cell in &frontier {
             for c in 0..8_i64 {
                 let p = [

@@ -1,5 +1,6 @@
-//! Marching tetrahedra over every cell of a box, in blocks that are skipped when the surface
-//! provably cannot cross them.
+//! Marching tetrahedra over every cell of a box, coarse to fine: f and ∇f are sampled on a
+//! coarse lattice (every fourth point), and only the blocks of 4³ cubes that the surface may
+//! cross are sampled in full.
 
 use rayon::prelude::*;
 use rbf_core::InterpolantView;
@@ -9,17 +10,45 @@ use super::bound::one_sign_in_ball;
 use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
 
 /// Cells along each side of a block.
-const BLOCK: i64 = 8;
+const BLOCK: i64 = 4;
 
-/// Crossed edges and triangles of every cell of the lattice.
+/// Crossed edges, triangles, lattice points sampled and blocks skipped.
 pub(crate) fn cells(
     f: &InterpolantView<'_, f64, 3>,
     lattice: &Lattice,
     skip: BlockSkip,
-) -> (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize) {
+) -> (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize, usize) {
     let blocks: [i64; 3] = core::array::from_fn(|d| (lattice.cells[d] + BLOCK - 1) / BLOCK);
-    let count = (blocks[0] * blocks[1] * blocks[2]) as usize;
-    let results: Vec<(Vec<CrossedEdge>, Vec<EdgeTriangle>, bool)> = (0..count)
+    let coarse_n: [i64; 3] = core::array::from_fn(|d| blocks[d] + 1);
+    let coarse_point = |i: [i64; 3]| -> [i64; 3] {
+        core::array::from_fn(|d| (i[d] * BLOCK).min(lattice.cells[d]))
+    };
+    // f and ∇f at the block corners.
+    let count = (coarse_n[0] * coarse_n[1] * coarse_n[2]) as usize;
+    let points: Vec<[f64; 3]> = (0..count as i64)
+        .map(|c| {
+            let i = [
+                c % coarse_n[0],
+                (c / coarse_n[0]) % coarse_n[1],
+                c / (coarse_n[0] * coarse_n[1]),
+            ];
+            lattice.point(coarse_point(i))
+        })
+        .collect();
+    let mut values = vec![0.0; count];
+    let mut gradients = vec![[0.0; 3]; count];
+    points
+        .par_chunks(256)
+        .zip(values.par_chunks_mut(256))
+        .zip(gradients.par_chunks_mut(256))
+        .for_each(|((p, v), g)| {
+            // Equal lengths by construction.
+            let _ = f.values_and_gradients(p, v, g);
+        });
+    let coarse = |i: [i64; 3]| (i[0] + coarse_n[0] * (i[1] + coarse_n[1] * i[2])) as usize;
+
+    let total = (blocks[0] * blocks[1] * blocks[2]) as usize;
+    let results: Vec<Option<(Vec<CrossedEdge>, Vec<EdgeTriangle>, usize)>> = (0..total)
         .into_par_iter()
         .map(|b| {
             let b = b as i64;
@@ -28,58 +57,61 @@ pub(crate) fn cells(
                 (b / blocks[0]) % blocks[1],
                 b / (blocks[0] * blocks[1]),
             ];
-            let lo: [i64; 3] = core::array::from_fn(|d| block[d] * BLOCK);
-            let n: [i64; 3] = core::array::from_fn(|d| BLOCK.min(lattice.cells[d] - lo[d]));
-            let a = lattice.point(lo);
-            let c = lattice.point([lo[0] + n[0], lo[1] + n[1], lo[2] + n[2]]);
-            let centre = core::array::from_fn(|d| 0.5 * (a[d] + c[d]));
-            let radius = 0.5 * crate::mesh::norm(crate::mesh::sub(c, a));
+            let lo = coarse_point(block);
+            let hi = coarse_point([block[0] + 1, block[1] + 1, block[2] + 1]);
+            let (a, c) = (lattice.point(lo), lattice.point(hi));
+            let half_diagonal = 0.5 * crate::mesh::norm(crate::mesh::sub(c, a));
+            let corners = (0..8).map(|k: i64| {
+                coarse([
+                    block[0] + (k & 1),
+                    block[1] + ((k >> 1) & 1),
+                    block[2] + (k >> 2),
+                ])
+            });
             let skipped = match skip {
                 BlockSkip::Never => false,
-                BlockSkip::Proven => one_sign_in_ball(f, centre, radius),
+                BlockSkip::Proven => {
+                    let centre = core::array::from_fn(|d| 0.5 * (a[d] + c[d]));
+                    one_sign_in_ball(f, centre, half_diagonal)
+                }
                 BlockSkip::Estimated => {
-                    one_sign_in_ball(f, centre, radius) || corners_say_empty(f, a, c)
+                    // Every point of the block is within half a diagonal of a corner.
+                    let (mut slope, mut smallest, mut positive) = (0.0_f64, f64::INFINITY, 0);
+                    for k in corners {
+                        slope = slope.max(crate::mesh::norm(gradients[k]));
+                        smallest = smallest.min(values[k].abs());
+                        positive += usize::from(values[k] > 0.0);
+                    }
+                    (positive == 0 || positive == 8) && smallest > 1.5 * slope * half_diagonal
                 }
             };
             if skipped {
-                return (Vec::new(), Vec::new(), true);
+                return None;
             }
+            let n = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
             let (mut edges, mut tris) = (Vec::new(), Vec::new());
-            block_cells(f, lattice, lo, n, &mut edges, &mut tris);
-            (edges, tris, false)
+            let samples = block_cells(f, lattice, lo, n, &mut edges, &mut tris);
+            Some((edges, tris, samples))
         })
         .collect();
-    let skipped = results.iter().filter(|r| r.2).count();
     let mut edges = Vec::new();
     let mut tris = Vec::new();
-    for (e, t, _) in results {
-        edges.extend(e);
-        tris.extend(t);
+    let mut samples = count;
+    let mut skipped = 0;
+    for r in results {
+        match r {
+            Some((e, t, s)) => {
+                edges.extend(e);
+                tris.extend(t);
+                samples += s;
+            }
+            None => skipped += 1,
+        }
     }
-    (edges, tris, skipped)
+    (edges, tris, samples, skipped)
 }
 
-/// The sampled-gradient test of [`BlockSkip::Estimated`] on the box from `a` to `c`.
-fn corners_say_empty(f: &InterpolantView<'_, f64, 3>, a: [f64; 3], c: [f64; 3]) -> bool {
-    let diagonal = crate::mesh::norm(crate::mesh::sub(c, a));
-    let mut slope = 0.0_f64;
-    let mut smallest = f64::INFINITY;
-    let mut positive = 0;
-    for k in 0..8 {
-        let p = [
-            if k & 1 == 0 { a[0] } else { c[0] },
-            if k & 2 == 0 { a[1] } else { c[1] },
-            if k & 4 == 0 { a[2] } else { c[2] },
-        ];
-        let (v, g) = f.value_and_gradient(&p);
-        slope = slope.max(crate::mesh::norm(g));
-        smallest = smallest.min(v.abs());
-        positive += usize::from(v > 0.0);
-    }
-    (positive == 0 || positive == 8) && smallest > 2.0 * slope * diagonal
-}
-
-/// Samples a block's lattice points and polygonizes its cells.
+/// Samples a block's lattice points and polygonizes its cells; returns the samples taken.
 fn block_cells(
     f: &InterpolantView<'_, f64, 3>,
     lattice: &Lattice,
@@ -87,7 +119,7 @@ fn block_cells(
     n: [i64; 3],
     edges: &mut Vec<CrossedEdge>,
     tris: &mut Vec<EdgeTriangle>,
-) {
+) -> usize {
     let m = [n[0] + 1, n[1] + 1, n[2] + 1];
     let mut points = Vec::with_capacity((m[0] * m[1] * m[2]) as usize);
     for k in 0..m[2] {
@@ -114,4 +146,5 @@ fn block_cells(
             }
         }
     }
+    points.len()
 }

@@ -43,7 +43,7 @@ pub struct PolygonizeSettings {
     pub bounds: Option<([f64; 3], [f64; 3])>,
     /// Growth of the default box on each side, as a fraction of its longest side. 0.1.
     pub margin: f64,
-    /// How the grid method decides that a block of 8³ cubes holds no surface.
+    /// How the grid method decides that a block of 4³ cubes holds no surface.
     pub skip: BlockSkip,
     /// Rounds of root finding along each edge (Illinois regula falsi). 8.
     pub root_iterations: usize,
@@ -61,16 +61,17 @@ impl Default for PolygonizeSettings {
     }
 }
 
-/// How the grid polygonizer skips blocks of 8³ cubes without sampling them.
+/// How the grid polygonizer skips blocks of 4³ cubes without sampling them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BlockSkip {
     /// Only when a Taylor bound from the kernel's derivatives and the weights proves f has one
     /// sign in the block. Never misses surface, but the bound is loose for models with large,
     /// cancelling weights (normal constraints), where it rarely skips.
     Proven,
-    /// Also when f at the block's eight corners has one sign and |f| there exceeds the block's
-    /// diagonal times twice the largest |∇f| at the corners (the sampled-gradient heuristic of
-    /// paper 000, §7.2). Can miss a component smaller than a block. The default.
+    /// Also when f at the block's eight corners has one sign and |f| there exceeds half the
+    /// block's diagonal (the farthest any point is from a corner) times 1.5 × the largest |∇f|
+    /// at the corners (the sampled-gradient heuristic of paper 000, §7.2). Can miss a component
+    /// smaller than a block. The default.
     Estimated,
     /// Sample every lattice point.
     Never,
@@ -83,7 +84,7 @@ pub struct PolygonizeStats {
     pub cells: [usize; 3],
     /// Lattice points where f was sampled (not counting root finding).
     pub samples: usize,
-    /// Blocks of 8³ cubes skipped because the surface cannot cross them (grid method).
+    /// Blocks of 4³ cubes skipped because the surface cannot cross them (grid method).
     pub skipped_blocks: usize,
 }
 
@@ -173,7 +174,8 @@ fn automatic_bounds(f: &InterpolantView<'_, f64, 3>, margin: f64) -> ([f64; 3], 
 }
 
 /// Polygonizes every component of f's zero set inside the box, sampling f coarse-to-fine:
-/// blocks of 8³ cubes that the surface cannot cross are skipped (see [`BlockSkip`]).
+/// f and ∇f are sampled at every fourth lattice point, and blocks of 4³ cubes that the
+/// surface cannot cross are skipped (see [`BlockSkip`]).
 ///
 /// ```
 /// use rbf_core::{InterpolantView, Kernel};
@@ -190,15 +192,10 @@ pub fn polygonize_grid(
     settings: &PolygonizeSettings,
 ) -> Result<(TriMesh, PolygonizeStats), MeshError> {
     let lattice = settings.lattice(f)?;
-    let (edges, tris, skipped) = grid::cells(f, &lattice, settings.skip);
-    let total_blocks: usize = lattice
-        .cells
-        .iter()
-        .map(|&c| ((c + 7) / 8) as usize)
-        .product();
+    let (edges, tris, samples, skipped) = grid::cells(f, &lattice, settings.skip);
     let stats = PolygonizeStats {
         cells: lattice.cells.map(|c| c as usize),
-        samples: (total_blocks - skipped) * 9 * 9 * 9,
+        samples,
         skipped_blocks: skipped,
     };
     if tris.is_empty() {

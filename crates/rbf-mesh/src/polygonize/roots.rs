@@ -1,7 +1,5 @@
-//! From crossed lattice edges to a mesh: vertices found on the surface by root finding along
-//! each edge, normals from the gradient of f.
-
-use std::collections::HashMap;
+//! From crossed lattice edges to a mesh: vertices found on the surface by safeguarded Newton
+//! iteration along each edge, normals from the gradient of f.
 
 use rayon::prelude::*;
 use rbf_core::InterpolantView;
@@ -13,12 +11,15 @@ use crate::{MeshError, TriMesh};
 /// where f is exactly zero at a lattice point (the surface then touches that point).
 const END_MARGIN: f64 = 1e-6;
 
+/// Points per parallel task.
+const CHUNK: usize = 256;
+
 /// f at many points, in parallel.
 pub(crate) fn par_values(f: &InterpolantView<'_, f64, 3>, points: &[[f64; 3]]) -> Vec<f64> {
     let mut out = vec![0.0; points.len()];
     points
-        .par_chunks(256)
-        .zip(out.par_chunks_mut(256))
+        .par_chunks(CHUNK)
+        .zip(out.par_chunks_mut(CHUNK))
         .for_each(|(p, o)| {
             // Equal lengths by construction.
             let _ = f.values(p, o);
@@ -26,8 +27,47 @@ pub(crate) fn par_values(f: &InterpolantView<'_, f64, 3>, points: &[[f64; 3]]) -
     out
 }
 
-/// Builds the mesh: one vertex per crossed edge, placed where f = 0 by Illinois regula falsi
-/// (`iterations` rounds, each one batched evaluation of every unfinished edge).
+/// f and ∇f at many points, in parallel.
+fn par_gradients(
+    f: &InterpolantView<'_, f64, 3>,
+    points: &[[f64; 3]],
+) -> (Vec<f64>, Vec<[f64; 3]>) {
+    let mut values = vec![0.0; points.len()];
+    let mut gradients = vec![[0.0; 3]; points.len()];
+    points
+        .par_chunks(CHUNK)
+        .zip(values.par_chunks_mut(CHUNK))
+        .zip(gradients.par_chunks_mut(CHUNK))
+        .for_each(|((p, v), g)| {
+            // Equal lengths by construction.
+            let _ = f.values_and_gradients(p, v, g);
+        });
+    (values, gradients)
+}
+
+/// Where the root search along one edge stands.
+#[derive(Clone, Copy)]
+struct Search {
+    /// Bracket [lo, hi] in edge parameter, f(lo) > 0 ≥ f(hi) or the reverse.
+    lo: f64,
+    f_lo: f64,
+    hi: f64,
+    f_hi: f64,
+    /// Which end moved last (−1 lo, 1 hi), for the Illinois rule.
+    side: i8,
+    /// The next point to evaluate.
+    t: f64,
+    /// The gradient at the last point evaluated.
+    gradient: [f64; 3],
+    done: bool,
+}
+
+/// Builds the mesh: one vertex per crossed edge, placed where f = 0. Each round evaluates f
+/// and ∇f at every unfinished edge's current point in one batch and takes a Newton step along
+/// the edge, or an Illinois secant step within the bracket when Newton would leave it. An edge
+/// is done when |f| is below 1e-8 of the change of f along it, or its Newton step is below
+/// 1e-4 of its length (either way the vertex is within about 1e-8 of an edge length of the
+/// surface), after at most `iterations` rounds.
 pub(crate) fn assemble(
     f: &InterpolantView<'_, f64, 3>,
     lattice: &Lattice,
@@ -35,14 +75,11 @@ pub(crate) fn assemble(
     triangles: Vec<EdgeTriangle>,
     iterations: usize,
 ) -> Result<TriMesh, MeshError> {
-    let mut index: HashMap<u64, u32> = HashMap::with_capacity(edges.len() / 2);
-    let mut unique: Vec<CrossedEdge> = Vec::with_capacity(edges.len() / 2);
-    for e in edges {
-        index.entry(e.0).or_insert_with(|| {
-            unique.push(e);
-            (unique.len() - 1) as u32
-        });
-    }
+    // One vertex per distinct edge: sort the keys (in parallel) and drop repeats.
+    let mut edges = edges;
+    edges.par_sort_unstable_by_key(|e| e.0);
+    edges.dedup_by_key(|e| e.0);
+    let unique = edges;
     let ends: Vec<([f64; 3], [f64; 3])> = unique
         .iter()
         .map(|&(key, _, _)| {
@@ -53,56 +90,119 @@ pub(crate) fn assemble(
             )
         })
         .collect();
-    // Bracket [t0, t1] with values (f0, f1) of opposite classes; `side` remembers which end
-    // moved last, for the Illinois halving.
-    let mut state: Vec<(f64, f64, f64, f64, i8)> = unique
-        .iter()
-        .map(|&(_, a, b)| (0.0, a, 1.0, b, 0))
-        .collect();
     let at = |(a, b): ([f64; 3], [f64; 3]), t: f64| -> [f64; 3] {
         core::array::from_fn(|d| a[d] + t * (b[d] - a[d]))
     };
-    let guess = |&(t0, f0, t1, f1, _): &(f64, f64, f64, f64, i8)| {
-        let t = if f0 != f1 {
-            t0 + (t1 - t0) * f0 / (f0 - f1)
+    let secant = |lo: f64, f_lo: f64, hi: f64, f_hi: f64| {
+        let t = if f_lo != f_hi {
+            lo + (hi - lo) * f_lo / (f_lo - f_hi)
         } else {
-            0.5 * (t0 + t1)
+            0.5 * (lo + hi)
         };
-        t.clamp(END_MARGIN, 1.0 - END_MARGIN)
+        t.clamp(lo.min(hi), lo.max(hi))
     };
-    for _ in 0..iterations {
-        let ts: Vec<f64> = state.iter().map(guess).collect();
-        let points: Vec<[f64; 3]> = ts.iter().zip(&ends).map(|(&t, &e)| at(e, t)).collect();
-        let values = par_values(f, &points);
-        for ((s, &t), &v) in state.iter_mut().zip(&ts).zip(&values) {
-            let (t0, f0, t1, f1, side) = *s;
-            if v == 0.0 || (t1 - t0) < 1e-12 {
-                *s = (t, v, t, v, 0);
-            } else if (v > 0.0) == (f0 > 0.0) {
-                let f1 = if side == -1 { 0.5 * f1 } else { f1 };
-                *s = (t, v, t1, f1, -1);
-            } else {
-                let f0 = if side == 1 { 0.5 * f0 } else { f0 };
-                *s = (t0, f0, t, v, 1);
-            }
-        }
-    }
-    let positions: Vec<[f64; 3]> = state
+    let tolerance: Vec<f64> = unique
         .iter()
-        .zip(&ends)
-        .map(|(s, &e)| at(e, if s.0 == s.2 { s.0 } else { guess(s) }))
+        .map(|&(_, a, b)| 1e-8 * (a - b).abs())
         .collect();
-    let triangles: Vec<[u32; 3]> = triangles
-        .into_iter()
-        .map(|t| t.map(|k| index[&k]))
-        .collect();
-    let normals: Vec<[f64; 3]> = positions
-        .par_iter()
-        .map(|p| {
-            let g = f.gradient(p);
-            let l = crate::mesh::norm(g);
-            if l > 0.0 { g.map(|c| -c / l) } else { [0.0; 3] }
+    let mut searches: Vec<Search> = unique
+        .iter()
+        .map(|&(_, a, b)| Search {
+            lo: 0.0,
+            f_lo: a,
+            hi: 1.0,
+            f_hi: b,
+            side: 0,
+            t: secant(0.0, a, 1.0, b).clamp(END_MARGIN, 1.0 - END_MARGIN),
+            gradient: [0.0; 3],
+            done: false,
         })
         .collect();
+    let mut pending: Vec<usize> = (0..searches.len()).collect();
+    for round in 0..iterations.max(1) {
+        let points: Vec<[f64; 3]> = pending
+            .iter()
+            .map(|&i| at(ends[i], searches[i].t))
+            .collect();
+        let (values, gradients) = par_gradients(f, &points);
+        let last = round + 1 == iterations.max(1);
+        let mut still = Vec::with_capacity(pending.len());
+        for ((&i, &v), &g) in pending.iter().zip(&values).zip(&gradients) {
+            let s = &mut searches[i];
+            s.gradient = g;
+            if v.abs() <= tolerance[i] || last {
+                s.done = true;
+                continue;
+            }
+            // Shrink the bracket to the side where the sign changes.
+            let t = s.t;
+            // Illinois: when the same end moves twice, halve the value kept at the other, so
+            // that secant steps do not stall against a fixed end.
+            if (v > 0.0) == (s.f_lo > 0.0) {
+                s.lo = t;
+                s.f_lo = v;
+                if s.side == -1 {
+                    s.f_hi *= 0.5;
+                }
+                s.side = -1;
+            } else {
+                s.hi = t;
+                s.f_hi = v;
+                if s.side == 1 {
+                    s.f_lo *= 0.5;
+                }
+                s.side = 1;
+            }
+            // Newton along the edge: d f / d t = ∇f · (b − a).
+            let (a, b) = ends[i];
+            let slope: f64 = (0..3).map(|d| g[d] * (b[d] - a[d])).sum();
+            let newton = t - v / slope;
+            let (lo, hi) = (s.lo.min(s.hi), s.lo.max(s.hi));
+            let inside = newton.is_finite() && newton > lo && newton < hi;
+            s.t = if inside {
+                newton
+            } else {
+                secant(s.lo, s.f_lo, s.hi, s.f_hi)
+            }
+            .clamp(END_MARGIN, 1.0 - END_MARGIN);
+            // A Newton step this small leaves an error of the order of its square: accept it
+            // without another evaluation (the gradient kept is from 1e-4 of an edge away).
+            if inside && (newton - t).abs() < 1e-4 {
+                s.done = true;
+                continue;
+            }
+            if (hi - lo) < 1e-12 {
+                s.done = true;
+                continue;
+            }
+            still.push(i);
+        }
+        pending = still;
+        if pending.is_empty() {
+            break;
+        }
+    }
+    let positions: Vec<[f64; 3]> = searches
+        .iter()
+        .zip(&ends)
+        .map(|(s, &e)| at(e, s.t))
+        .collect();
+    let normals: Vec<[f64; 3]> = searches
+        .iter()
+        .map(|s| {
+            let l = crate::mesh::norm(s.gradient);
+            if l > 0.0 {
+                s.gradient.map(|c| -c / l)
+            } else {
+                [0.0; 3]
+            }
+        })
+        .collect();
+    let index = |k: u64| {
+        unique
+            .binary_search_by_key(&k, |e| e.0)
+            .map_or(0, |i| i as u32)
+    };
+    let triangles: Vec<[u32; 3]> = triangles.par_iter().map(|t| t.map(index)).collect();
     TriMesh::new(positions, triangles)?.with_normals(normals)
 }
