@@ -12,6 +12,9 @@ use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
 /// Cells along each side of a block.
 const BLOCK: i64 = 4;
 
+/// What a block that was not skipped gives: crossed edges, triangles, samples taken.
+type BlockResult = (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize);
+
 /// Crossed edges, triangles, lattice points sampled and blocks skipped.
 pub(crate) fn cells(
     f: &InterpolantView<'_, f64, 3>,
@@ -48,7 +51,7 @@ pub(crate) fn cells(
     let coarse = |i: [i64; 3]| (i[0] + coarse_n[0] * (i[1] + coarse_n[1] * i[2])) as usize;
 
     let total = (blocks[0] * blocks[1] * blocks[2]) as usize;
-    let results: Vec<Option<(Vec<CrossedEdge>, Vec<EdgeTriangle>, usize)>> = (0..total)
+    let results: Vec<Option<BlockResult>> = (0..total)
         .into_par_iter()
         .map(|b| {
             let b = b as i64;
