@@ -24,6 +24,9 @@ mod hash;
 mod io;
 mod mesh;
 mod polygonize;
+mod volume;
+mod voxelize;
+mod winding;
 
 pub use check::MeshReport;
 pub use error::{Location, MeshError};
@@ -33,3 +36,6 @@ pub use polygonize::{
     BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, polygonize_continuation,
     polygonize_grid, surface_seeds,
 };
+pub use volume::Volume;
+pub use voxelize::{VoxelSettings, voxel_grid, voxelize};
+pub use winding::winding_numbers;

@@ -3,6 +3,7 @@
 mod checks;
 mod formats;
 mod polygonize;
+mod voxels;
 
 use std::path::PathBuf;
 
