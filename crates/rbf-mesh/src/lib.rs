@@ -19,6 +19,7 @@
 //! ```
 
 mod check;
+mod distance;
 mod error;
 mod hash;
 mod io;
@@ -29,6 +30,7 @@ mod voxelize;
 mod winding;
 
 pub use check::MeshReport;
+pub use distance::{signed_distance, squared_distance_transform};
 pub use error::{Location, MeshError};
 pub use io::{read_mesh, read_mesh_bytes, write_mesh};
 pub use mesh::TriMesh;

@@ -188,10 +188,10 @@ pub fn voxelize(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>,
                         let y = ray_y(j, b);
                         crossings.clear();
                         for &t in &bins[(i * s + a) * ry + j * s + b] {
-                            if let Some((p, ids)) = &projected[t as usize] {
-                                if let Some(z) = hit(p, *ids, [x, y]) {
-                                    crossings.push((z, p.sign));
-                                }
+                            if let Some((p, ids)) = &projected[t as usize]
+                                && let Some(z) = hit(p, *ids, [x, y])
+                            {
+                                crossings.push((z, p.sign));
                             }
                         }
                         if crossings.is_empty() {
