@@ -7,6 +7,7 @@ mod failure;
 mod fit;
 mod io;
 mod mesh;
+mod voxelize;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -48,6 +49,9 @@ enum Command {
     /// Polygonize a model's surface into a triangle mesh (OBJ, PLY or STL).
     #[command(after_help = mesh::HELP)]
     Mesh(mesh::MeshArgs),
+    /// Voxelize a mesh: densities or signed distances on a grid, as a NumPy array.
+    #[command(after_help = voxelize::HELP)]
+    Voxelize(voxelize::VoxelizeArgs),
     /// Check a mesh: holes, non-manifold edges and vertices, orientation, components, genus.
     #[command(after_help = "Examples:\n  rbf check bunny.obj\n  rbf check scan.ply --json")]
     Check(check::CheckArgs),
@@ -103,6 +107,7 @@ fn main() -> ExitCode {
         Command::Eval(args) => eval::run(&args),
         Command::Check(args) => check::run(&args),
         Command::Mesh(args) => mesh::run(&args, cli.quiet),
+        Command::Voxelize(args) => voxelize::run(&args, cli.quiet),
         Command::Demo { output } => demo::run(&output, cli.quiet),
     };
     match result {

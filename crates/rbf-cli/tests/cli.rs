@@ -333,3 +333,102 @@ fn check_reports_a_mesh() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("bad.obj: line 3"), "{}", stderr(&o));
 }
+
+#[test]
+fn mesh_writes_a_watertight_surface_in_every_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let (model, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &["-q"]);
+    assert!(o.status.success());
+    for (ext, method) in [
+        ("obj", "continuation"),
+        ("ply", "grid"),
+        ("stl", "marching-cubes"),
+    ] {
+        let out = dir.path().join(format!("blob.{ext}"));
+        let o = rbf(
+            &[
+                "mesh",
+                model.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+                "--resolution",
+                "24",
+                "--method",
+                method,
+            ],
+            None,
+        );
+        assert!(o.status.success(), "{ext}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("watertight, genus 0, 1 component"),
+            "{ext}: {}",
+            stderr(&o)
+        );
+        let o = rbf(&["check", out.to_str().unwrap()], None);
+        let text = String::from_utf8(o.stdout).unwrap();
+        assert!(
+            text.contains("watertight: yes") && text.contains("outward"),
+            "{ext}: {text}"
+        );
+    }
+    let o = rbf(
+        &[
+            "mesh",
+            model.to_str().unwrap(),
+            "-o",
+            "x.obj",
+            "--cell-size",
+            "-1",
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn voxelize_writes_npy_and_its_metadata() {
+    let dir = tempfile::tempdir().unwrap();
+    let torus = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/torus.obj");
+    let out = dir.path().join("t.npy");
+    let o = rbf(
+        &[
+            "voxelize",
+            torus,
+            "--resolution",
+            "20",
+            "-o",
+            out.to_str().unwrap(),
+            "--signed-distance",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bytes = std::fs::read(&out).unwrap();
+    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
+    let header_len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    let header = std::str::from_utf8(&bytes[10..10 + header_len]).unwrap();
+    assert!(
+        header.contains("'<f4'") && header.contains("'shape': ("),
+        "{header}"
+    );
+    let meta = std::fs::read_to_string(dir.path().join("t.json")).unwrap();
+    assert!(
+        meta.contains("\"voxel_size\"") && meta.contains("\"origin\"") && meta.contains("signed"),
+        "{meta}"
+    );
+    // Shape in the header matches the data.
+    let shape: Vec<usize> = header
+        .split("'shape': (")
+        .nth(1)
+        .unwrap()
+        .split(')')
+        .next()
+        .unwrap()
+        .split(',')
+        .filter_map(|t| t.trim().parse().ok())
+        .collect();
+    assert_eq!(
+        bytes.len() - 10 - header_len,
+        4 * shape.iter().product::<usize>()
+    );
+}

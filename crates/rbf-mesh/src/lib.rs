@@ -39,5 +39,5 @@ pub use polygonize::{
     polygonize_grid, surface_seeds,
 };
 pub use volume::Volume;
-pub use voxelize::{VoxelSettings, voxel_grid, voxelize};
-pub use winding::winding_numbers;
+pub use voxelize::{VoxelMethod, VoxelSettings, voxel_grid, voxelize};
+pub use winding::{WindingTree, winding_numbers, winding_numbers_exact};

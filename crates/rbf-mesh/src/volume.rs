@@ -44,3 +44,33 @@ impl<T: Copy> Volume<T> {
         ]
     }
 }
+
+impl Volume<f32> {
+    /// The volume as a NumPy `.npy` file (version 1.0, little-endian `float32`, C order,
+    /// shape `(nx, ny, nz)`), which `numpy.load` reads as an array indexed `[x][y][z]`.
+    ///
+    /// ```
+    /// let v = rbf_mesh::Volume::filled([0.0; 3], 1.0, [2, 3, 4], 0.5_f32);
+    /// let bytes = v.to_npy();
+    /// assert_eq!(&bytes[..6], b"\x93NUMPY");
+    /// assert_eq!((bytes.len() - 24 * 4) % 64, 0);
+    /// ```
+    pub fn to_npy(&self) -> Vec<u8> {
+        let [nx, ny, nz] = self.shape;
+        let mut header =
+            format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({nx}, {ny}, {nz}), }}");
+        // Magic (6) + version (2) + length (2) + header, padded with spaces to a multiple of 64
+        // and ended by a newline.
+        let unpadded = 10 + header.len() + 1;
+        header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
+        header.push('\n');
+        let mut out = Vec::with_capacity(10 + header.len() + 4 * self.data.len());
+        out.extend_from_slice(b"\x93NUMPY\x01\x00");
+        out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+        out.extend_from_slice(header.as_bytes());
+        for v in &self.data {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out
+    }
+}

@@ -20,6 +20,20 @@ pub struct VoxelSettings {
     pub margin: usize,
     /// Sub-samples along each axis of a voxel (s³ per voxel, s² rays per voxel column). 4.
     pub supersampling: usize,
+    /// How inside is decided.
+    pub method: VoxelMethod,
+}
+
+/// How the voxelizer decides what is inside.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VoxelMethod {
+    /// Rays for a watertight mesh, winding numbers otherwise (by [`TriMesh::check`]).
+    Auto,
+    /// Parallel rays along z, crossings counted with their sign: exact for watertight meshes.
+    Rays,
+    /// Generalized winding numbers (> ½ is inside): robust to holes, overlaps and non-manifold
+    /// parts. Voxels whose class differs from a neighbour's are supersampled.
+    Winding,
 }
 
 impl Default for VoxelSettings {
@@ -28,6 +42,7 @@ impl Default for VoxelSettings {
             resolution: 128,
             margin: 2,
             supersampling: 4,
+            method: VoxelMethod::Auto,
         }
     }
 }
@@ -95,9 +110,10 @@ fn hit(t: &Projected, ids: [u32; 3], p: [f64; 2]) -> Option<f64> {
     Some((w[0] * t.z[0] + w[1] * t.z[1] + w[2] * t.z[2]) / t.area)
 }
 
-/// The fraction of each voxel inside a watertight mesh: s² rays along z through each voxel
-/// column, crossings counted with the sign of the triangle they pass (a non-zero winding rule
-/// along the ray), s sub-samples along z per voxel.
+/// The fraction of each voxel inside the mesh. With rays (the default for watertight meshes):
+/// s² rays along z through each voxel column, crossings counted with the sign of the triangle
+/// they pass (a non-zero winding rule along the ray), s sub-samples along z per voxel. With
+/// winding numbers (the default otherwise), see [`VoxelMethod::Winding`].
 ///
 /// ```
 /// # use rbf_mesh::{TriMesh, VoxelSettings, voxelize};
@@ -110,6 +126,14 @@ fn hit(t: &Projected, ids: [u32; 3], p: [f64; 2]) -> Option<f64> {
 /// assert!((inside - 1000.0).abs() < 1e-3); // the unit cube is 10³ voxels
 /// ```
 pub fn voxelize(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>, MeshError> {
+    let method = match settings.method {
+        VoxelMethod::Auto if mesh.check().is_watertight() => VoxelMethod::Rays,
+        VoxelMethod::Auto => VoxelMethod::Winding,
+        m => m,
+    };
+    if method == VoxelMethod::Winding {
+        return voxelize_winding(mesh, settings);
+    }
     let mut volume = voxel_grid(mesh, settings)?;
     let s = settings.supersampling;
     let h = volume.voxel_size;
@@ -217,5 +241,56 @@ pub fn voxelize(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>,
                 }
             }
         });
+    Ok(volume)
+}
+
+/// Voxelizes by generalized winding numbers: each centre is classified, and voxels with a
+/// neighbour of the other class get the fraction of their s³ sub-samples that are inside.
+fn voxelize_winding(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>, MeshError> {
+    let mut volume = voxel_grid(mesh, settings)?;
+    let tree = crate::WindingTree::new(mesh);
+    let [nx, ny, nz] = volume.shape;
+    let coords = |p: usize| (p / (ny * nz), (p / nz) % ny, p % nz);
+    let inside: Vec<bool> = (0..volume.data.len())
+        .into_par_iter()
+        .map(|p| {
+            let (i, j, k) = coords(p);
+            tree.winding_number(volume.centre(i, j, k)) > 0.5
+        })
+        .collect();
+    let s = settings.supersampling;
+    let offsets: Vec<f64> = (0..s).map(|i| (i as f64 + 0.5) / s as f64 - 0.5).collect();
+    let h = volume.voxel_size;
+    let volume_ref = &volume;
+    let data: Vec<f32> = (0..inside.len())
+        .into_par_iter()
+        .map(|p| {
+            let (i, j, k) = coords(p);
+            let class = inside[p];
+            let differs =
+                |ii: usize, jj: usize, kk: usize| inside[(ii * ny + jj) * nz + kk] != class;
+            let boundary = (i > 0 && differs(i - 1, j, k))
+                || (i + 1 < nx && differs(i + 1, j, k))
+                || (j > 0 && differs(i, j - 1, k))
+                || (j + 1 < ny && differs(i, j + 1, k))
+                || (k > 0 && differs(i, j, k - 1))
+                || (k + 1 < nz && differs(i, j, k + 1));
+            if !boundary {
+                return if class { 1.0 } else { 0.0 };
+            }
+            let c = volume_ref.centre(i, j, k);
+            let mut count = 0;
+            for &a in &offsets {
+                for &b in &offsets {
+                    for &o in &offsets {
+                        let q = [c[0] + a * h, c[1] + b * h, c[2] + o * h];
+                        count += usize::from(tree.winding_number(q) > 0.5);
+                    }
+                }
+            }
+            count as f32 / (s * s * s) as f32
+        })
+        .collect();
+    volume.data = data;
     Ok(volume)
 }

@@ -1,6 +1,8 @@
 //! Generalized winding numbers (Jacobson et al. 2013): the solid angle a mesh subtends at a
 //! point over 4π. 1 inside a closed outward mesh, 0 outside, and a graceful inside/outside
-//! answer for meshes with holes, overlaps or non-manifold parts.
+//! answer for meshes with holes, overlaps or non-manifold parts. Evaluated fast with a bounding
+//! hierarchy whose far clusters are replaced by their expansion to second order (after
+//! Barill et al. 2018).
 
 use rayon::prelude::*;
 
@@ -17,8 +19,164 @@ fn solid_angle(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> f64 {
     2.0 * numerator.atan2(denominator)
 }
 
-/// The winding number of the mesh at each point, by summing every triangle's solid angle
-/// (exact; O(points × triangles), in parallel over points).
+/// A node of the hierarchy: its triangles are `order[start..end]`.
+struct Node {
+    start: usize,
+    end: usize,
+    /// Children, or none for a leaf.
+    children: Option<(usize, usize)>,
+    /// Σ area vectors (½ (b − a) × (c − a)).
+    area: [f64; 3],
+    /// Area-weighted centroid.
+    centre: [f64; 3],
+    /// Σ area vector ⊗ (triangle centroid − centre), for the second-order term.
+    moment: [[f64; 3]; 3],
+    /// Largest distance from `centre` to a corner of the node's triangles.
+    radius: f64,
+}
+
+/// Triangles per leaf.
+const LEAF: usize = 8;
+/// A cluster counts as far when the query is this many radii from its centre.
+const FAR: f64 = 2.5;
+
+/// A mesh prepared for fast winding-number queries.
+pub struct WindingTree {
+    corners: Vec<[[f64; 3]; 3]>,
+    order: Vec<usize>,
+    nodes: Vec<Node>,
+}
+
+impl WindingTree {
+    /// Builds the hierarchy (median splits of triangle centroids along the widest axis).
+    pub fn new(mesh: &TriMesh) -> Self {
+        let corners: Vec<[[f64; 3]; 3]> = (0..mesh.triangles().len())
+            .map(|t| mesh.corners(t))
+            .collect();
+        let mut tree = Self {
+            order: (0..corners.len()).collect(),
+            corners,
+            nodes: Vec::new(),
+        };
+        if !tree.corners.is_empty() {
+            tree.build(0, tree.corners.len());
+        }
+        tree
+    }
+
+    fn build(&mut self, start: usize, end: usize) -> usize {
+        let mut area = [0.0; 3];
+        let mut weighted = [0.0; 3];
+        let mut total = 0.0;
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for &t in &self.order[start..end] {
+            let [a, b, c] = self.corners[t];
+            let av = cross(sub(b, a), sub(c, a)).map(|x| 0.5 * x);
+            let w = norm(av);
+            for d in 0..3 {
+                area[d] += av[d];
+                let centroid = (a[d] + b[d] + c[d]) / 3.0;
+                weighted[d] += w * centroid;
+                lo[d] = lo[d].min(centroid);
+                hi[d] = hi[d].max(centroid);
+            }
+            total += w;
+        }
+        let centre = if total > 0.0 {
+            weighted.map(|x| x / total)
+        } else {
+            core::array::from_fn(|d| 0.5 * (lo[d] + hi[d]))
+        };
+        let mut moment = [[0.0; 3]; 3];
+        for &t in &self.order[start..end] {
+            let [a, b, c] = self.corners[t];
+            let av = cross(sub(b, a), sub(c, a)).map(|x| 0.5 * x);
+            let offset: [f64; 3] = core::array::from_fn(|d| (a[d] + b[d] + c[d]) / 3.0 - centre[d]);
+            for i in 0..3 {
+                for j in 0..3 {
+                    moment[i][j] += av[i] * offset[j];
+                }
+            }
+        }
+        let radius = self.order[start..end]
+            .iter()
+            .flat_map(|&t| self.corners[t])
+            .map(|p| norm(sub(p, centre)))
+            .fold(0.0, f64::max);
+        let id = self.nodes.len();
+        self.nodes.push(Node {
+            start,
+            end,
+            children: None,
+            area,
+            centre,
+            moment,
+            radius,
+        });
+        if end - start > LEAF {
+            let axis = (0..3)
+                .max_by(|&x, &y| (hi[x] - lo[x]).total_cmp(&(hi[y] - lo[y])))
+                .unwrap_or(0);
+            let mid = (start + end) / 2;
+            let corners = &self.corners;
+            let key = |t: &usize| {
+                let [a, b, c] = corners[*t];
+                a[axis] + b[axis] + c[axis]
+            };
+            self.order[start..end]
+                .select_nth_unstable_by(mid - start, |x, y| key(x).total_cmp(&key(y)));
+            let left = self.build(start, mid);
+            let right = self.build(mid, end);
+            self.nodes[id].children = Some((left, right));
+        }
+        id
+    }
+
+    /// The winding number at p: exact for near triangles, expansions for far clusters.
+    pub fn winding_number(&self, p: [f64; 3]) -> f64 {
+        if self.nodes.is_empty() {
+            return 0.0;
+        }
+        let mut sum = 0.0;
+        let mut stack = vec![0usize];
+        while let Some(n) = stack.pop() {
+            let node = &self.nodes[n];
+            let r = sub(node.centre, p);
+            let d = norm(r);
+            if d > FAR * node.radius {
+                // Each triangle's solid angle ≈ A·g(c) with g(x) = (x − p)/|x − p|³, expanded
+                // about the cluster's centre to second order: N·g + Σ J:M with J = ∇g.
+                let d3 = d * d * d;
+                let d5 = d3 * d * d;
+                let mut second = 0.0;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        let jij = if i == j { 1.0 / d3 } else { 0.0 } - 3.0 * r[i] * r[j] / d5;
+                        second += jij * node.moment[i][j];
+                    }
+                }
+                sum += dot(node.area, r) / d3 + second;
+                continue;
+            }
+            match node.children {
+                Some((a, b)) => {
+                    stack.push(a);
+                    stack.push(b);
+                }
+                None => {
+                    for &t in &self.order[node.start..node.end] {
+                        let [a, b, c] = self.corners[t];
+                        sum += solid_angle(a, b, c, p);
+                    }
+                }
+            }
+        }
+        sum / (4.0 * std::f64::consts::PI)
+    }
+}
+
+/// The winding number of the mesh at each point (fast: hierarchical, in parallel).
 ///
 /// ```
 /// # use rbf_mesh::{TriMesh, winding_numbers};
@@ -28,9 +186,16 @@ fn solid_angle(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> f64 {
 /// )
 /// .unwrap();
 /// let w = winding_numbers(&tet, &[[0.1, 0.1, 0.1], [2.0, 2.0, 2.0]]);
-/// assert!((w[0] - 1.0).abs() < 1e-12 && w[1].abs() < 1e-12);
+/// assert!((w[0] - 1.0).abs() < 1e-9 && w[1].abs() < 1e-3);
 /// ```
 pub fn winding_numbers(mesh: &TriMesh, points: &[[f64; 3]]) -> Vec<f64> {
+    let tree = WindingTree::new(mesh);
+    points.par_iter().map(|&p| tree.winding_number(p)).collect()
+}
+
+/// The winding number at each point by summing every triangle's solid angle: exact, and
+/// O(points × triangles). For tests and small meshes.
+pub fn winding_numbers_exact(mesh: &TriMesh, points: &[[f64; 3]]) -> Vec<f64> {
     let corners: Vec<[[f64; 3]; 3]> = (0..mesh.triangles().len())
         .map(|t| mesh.corners(t))
         .collect();

@@ -1,7 +1,10 @@
 //! The voxelizer against an independent inside test (exact winding numbers) and against the
 //! meshes' volumes.
 
-use rbf_mesh::{VoxelSettings, read_mesh, voxelize, winding_numbers};
+use rbf_mesh::{
+    TriMesh, VoxelMethod, VoxelSettings, read_mesh, voxelize, winding_numbers,
+    winding_numbers_exact,
+};
 
 use crate::data;
 
@@ -21,7 +24,14 @@ fn occupancy_agrees_with_winding_numbers_on_every_shipped_mesh() {
             .flat_map(|i| (0..ny).flat_map(move |j| (0..nz).map(move |k| (i, j, k))))
             .map(|(i, j, k)| v.centre(i, j, k))
             .collect();
-        let w = winding_numbers(&mesh, &centres);
+        let w = winding_numbers_exact(&mesh, &centres);
+        // The fast hierarchical evaluation is within a few hundredths and classifies every
+        // centre the same way.
+        let fast = winding_numbers(&mesh, &centres);
+        for (a, b) in w.iter().zip(&fast) {
+            assert!((a - b).abs() < 0.05, "{name}: {a} vs {b}");
+            assert_eq!(*a > 0.5, *b > 0.5, "{name}: {a} vs {b}");
+        }
         let agree = v
             .data
             .iter()
@@ -63,4 +73,69 @@ fn supersampled_densities_add_up_to_the_volume() {
         let [_, ny, nz] = v.shape;
         assert!(v.data[..ny * nz].iter().all(|&d| d == 0.0));
     }
+}
+
+#[test]
+fn a_torus_with_holes_is_still_classified_by_winding_numbers() {
+    let torus = read_mesh(&data("torus.obj")).unwrap();
+    // Punch holes: drop every 97th triangle, and add a flipped copy of another.
+    let mut tris: Vec<[u32; 3]> = torus
+        .triangles()
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| t % 97 != 5)
+        .map(|(_, t)| *t)
+        .collect();
+    let t = tris[10];
+    tris.push([t[0], t[2], t[1]]);
+    let holed = TriMesh::new(torus.positions().to_vec(), tris).unwrap();
+    assert!(!holed.check().is_watertight());
+    let s = VoxelSettings {
+        resolution: 40,
+        ..Default::default()
+    };
+    let auto = voxelize(&holed, &s).unwrap();
+    let exact = voxelize(
+        &torus,
+        &VoxelSettings {
+            method: VoxelMethod::Rays,
+            ..s
+        },
+    )
+    .unwrap();
+    // Auto chose winding numbers: the result matches the intact torus almost everywhere.
+    let differ = auto
+        .data
+        .iter()
+        .zip(&exact.data)
+        .filter(|(a, b)| (**a > 0.5) != (**b > 0.5))
+        .count();
+    assert!(
+        (differ as f64) < 0.002 * exact.data.len() as f64,
+        "{differ} voxels differ"
+    );
+    // The tube is inside, the hole of the ring and the far corner are outside.
+    let at = |p: [f64; 3]| {
+        let idx: [usize; 3] =
+            core::array::from_fn(|d| ((p[d] - auto.origin[d]) / auto.voxel_size).round() as usize);
+        auto.get(idx[0], idx[1], idx[2])
+    };
+    assert_eq!(at([1.0, 0.0, 0.0]), 1.0);
+    assert_eq!(at([0.0, 0.0, 0.0]), 0.0);
+    // Rays on the holed mesh, by contrast, leak.
+    let rays = voxelize(
+        &holed,
+        &VoxelSettings {
+            method: VoxelMethod::Rays,
+            ..s
+        },
+    )
+    .unwrap();
+    let leaked = rays
+        .data
+        .iter()
+        .zip(&exact.data)
+        .filter(|(a, b)| (**a > 0.5) != (**b > 0.5))
+        .count();
+    assert!(leaked > differ, "rays {leaked} vs winding {differ}");
 }
