@@ -377,8 +377,7 @@ fn mesh_writes_a_watertight_surface_in_every_format() {
             model.to_str().unwrap(),
             "-o",
             "x.obj",
-            "--cell-size",
-            "-1",
+            "--cell-size=-1",
         ],
         None,
     );
