@@ -1,7 +1,8 @@
 //! Times our fit and evaluation on the peers' workloads and prints records that
 //! `../shared/peers/compare.py --rust` lines up with scipy's (same ids).
 //!
-//! `cargo run --release -p rbf-benches --bin peer-compare -- [--fit 2000,8000] [--eval 2000] [--grid 100]`
+//! `cargo run --release -p rbf-benches --bin peer-compare -- [--fit 2000,8000] [--eval 2000] [--grid 100] [--all-methods] [--mesh]`
+//! (`--fit 0 --eval 0 --mesh` times only the meshing workloads).
 
 use std::time::Instant;
 
@@ -18,7 +19,12 @@ fn sizes(args: &[String], flag: &str, default: &[usize]) -> Vec<usize> {
     match args.iter().position(|a| a == flag) {
         Some(i) => args
             .get(i + 1)
-            .map(|s| s.split(',').filter_map(|x| x.parse().ok()).collect())
+            .map(|s| {
+                s.split(',')
+                    .filter_map(|x| x.parse().ok())
+                    .filter(|&x| x > 0)
+                    .collect()
+            })
             .unwrap_or_default(),
         None => default.to_vec(),
     }
@@ -102,5 +108,146 @@ fn main() {
             "{{\"id\": \"rbf_scipy_eval[K={k},Q={q}]\", \"median_s\": {s}, \"threads\": {threads}}}"
         ));
     }
+    if args.iter().any(|a| a == "--mesh") {
+        mesh_workloads(repeats, threads, &mut records);
+    }
     println!("{{\"records\": [\n  {}\n]}}", records.join(",\n  "));
+}
+
+/// Times `f` `repeats` times after one warm-up run and records the median under `id`.
+fn record(
+    id: String,
+    repeats: usize,
+    threads: usize,
+    records: &mut Vec<String>,
+    mut f: impl FnMut(),
+) -> f64 {
+    f();
+    let mut times = Vec::new();
+    for _ in 0..repeats {
+        let t = Instant::now();
+        f();
+        times.push(t.elapsed().as_secs_f64());
+    }
+    let s = median(times);
+    eprintln!("{id} {s:.3} s");
+    records.push(format!(
+        "{{\"id\": \"{id}\", \"median_s\": {s}, \"threads\": {threads}}}"
+    ));
+    s
+}
+
+/// The workloads of `peer_voxel.py`, `peer_edt.py` and the polygonizer's goal.
+fn mesh_workloads(repeats: usize, threads: usize, records: &mut Vec<String>) {
+    use rbf_mesh::{
+        PolygonizeSettings, Resolution, VoxelMethod, VoxelSettings, polygonize_continuation,
+        polygonize_grid, signed_distance, surface_seeds, voxelize, winding_numbers,
+    };
+    let sphere = rbf_benches::icosphere(5);
+    for res in [128_usize, 256] {
+        // The peers' pitch is 2.4 / res over the sphere's diameter of 2.
+        let across = (2.0 * res as f64 / 2.4).round() as usize;
+        for s in [1_usize, 4] {
+            let settings = VoxelSettings {
+                resolution: across,
+                supersampling: s,
+                method: VoxelMethod::Rays,
+                margin: 2,
+            };
+            record(
+                format!("vox_rbf_rays_s{s}[mesh=icosphere,res={res}]"),
+                repeats,
+                threads,
+                records,
+                || {
+                    voxelize(&sphere, &settings).expect("voxelize");
+                },
+            );
+        }
+        let pitch = 2.4 / res as f64;
+        let centres: Vec<[f64; 3]> = (0..res * res * res)
+            .map(|p| {
+                let (i, j, k) = (p / (res * res), (p / res) % res, p % res);
+                [
+                    -1.2 + (i as f64 + 0.5) * pitch,
+                    -1.2 + (j as f64 + 0.5) * pitch,
+                    -1.2 + (k as f64 + 0.5) * pitch,
+                ]
+            })
+            .collect();
+        record(
+            format!("vox_rbf_winding[mesh=icosphere,res={res}]"),
+            repeats.min(2),
+            threads,
+            records,
+            || {
+                winding_numbers(&sphere, &centres);
+            },
+        );
+    }
+    for m in [128_usize, 256] {
+        let mask = rbf_benches::torus_and_ball(m);
+        record(
+            format!("edt_rbf_signed[n={m}]"),
+            repeats,
+            threads,
+            records,
+            || {
+                signed_distance(&mask);
+            },
+        );
+    }
+    // A model of 3000 constraint points: 1500 oriented points on a torus.
+    let cs: Vec<rbf_core::Constraint<3>> = (0..1500)
+        .map(|i| {
+            let golden = (5f64.sqrt() - 1.0) / 2.0;
+            let u = std::f64::consts::TAU * (i as f64 + 0.5) / 1500.0;
+            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
+            let n = [v.cos() * u.cos(), v.cos() * u.sin(), v.sin()];
+            let p = [
+                (1.0 + 0.35 * v.cos()) * u.cos(),
+                (1.0 + 0.35 * v.cos()) * u.sin(),
+                0.35 * v.sin(),
+            ];
+            rbf_core::Constraint::normal(p, n)
+        })
+        .collect();
+    let settings = FitSettings::default();
+    let fit = rbf_solve::fit(&cs, &settings).expect("fit");
+    let model = rbf_core::Model {
+        constraints: cs,
+        settings,
+        interpolant: fit.interpolant,
+        report: None,
+    };
+    let f = model.interpolant.view();
+    let s = PolygonizeSettings {
+        resolution: Resolution::Cells(256),
+        ..Default::default()
+    };
+    let seeds = surface_seeds(&model);
+    record(
+        "mc_rbf_continuation[K=3000,n=256]".into(),
+        repeats,
+        threads,
+        records,
+        || {
+            polygonize_continuation(&f, &seeds, &s).expect("mesh");
+        },
+    );
+    record(
+        "mc_rbf_grid[K=3000,n=256]".into(),
+        repeats.min(2),
+        threads,
+        records,
+        || {
+            polygonize_grid(&f, &s).expect("mesh");
+        },
+    );
+    let (mesh, stats) = polygonize_continuation(&f, &seeds, &s).expect("mesh");
+    eprintln!(
+        "  {} triangles over {:?} cubes",
+        mesh.triangles().len(),
+        stats.cells
+    );
 }

@@ -251,13 +251,7 @@ fn voxelize_winding(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f
     let tree = crate::WindingTree::new(mesh);
     let [nx, ny, nz] = volume.shape;
     let coords = |p: usize| (p / (ny * nz), (p / nz) % ny, p % nz);
-    let inside: Vec<bool> = (0..volume.data.len())
-        .into_par_iter()
-        .map(|p| {
-            let (i, j, k) = coords(p);
-            tree.winding_number(volume.centre(i, j, k)) > 0.5
-        })
-        .collect();
+    let inside = tree.classify_grid(volume.origin, volume.voxel_size, volume.shape);
     let s = settings.supersampling;
     let offsets: Vec<f64> = (0..s).map(|i| (i as f64 + 0.5) / s as f64 - 0.5).collect();
     let h = volume.voxel_size;

@@ -38,7 +38,7 @@ struct Node {
 /// Triangles per leaf.
 const LEAF: usize = 8;
 /// A cluster counts as far when the query is this many radii from its centre.
-const FAR: f64 = 2.5;
+const FAR: f64 = 2.0;
 
 /// A mesh prepared for fast winding-number queries.
 pub struct WindingTree {
@@ -139,8 +139,12 @@ impl WindingTree {
             return 0.0;
         }
         let mut sum = 0.0;
-        let mut stack = vec![0usize];
-        while let Some(n) = stack.pop() {
+        // The tree is balanced, so its depth is about log2(triangles / LEAF): 64 is plenty.
+        let mut stack = [0usize; 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let n = stack[top];
             let node = &self.nodes[n];
             let r = sub(node.centre, p);
             let d = norm(r);
@@ -160,9 +164,14 @@ impl WindingTree {
                 continue;
             }
             match node.children {
-                Some((a, b)) => {
-                    stack.push(a);
-                    stack.push(b);
+                Some((a, b)) if top + 2 <= stack.len() => {
+                    stack[top] = a;
+                    stack[top + 1] = b;
+                    top += 2;
+                }
+                Some(_) => {
+                    // Deeper than the stack: count the cluster by its expansion.
+                    sum += dot(node.area, r) / (d * d * d);
                 }
                 None => {
                     for &t in &self.order[node.start..node.end] {
@@ -173,6 +182,117 @@ impl WindingTree {
             }
         }
         sum / (4.0 * std::f64::consts::PI)
+    }
+}
+
+impl WindingTree {
+    /// True when some triangle comes within `radius` of `centre` (tested on bounding spheres of
+    /// the hierarchy and boxes of the triangles).
+    pub fn any_triangle_near(&self, centre: [f64; 3], radius: f64) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let mut stack = vec![0usize];
+        while let Some(n) = stack.pop() {
+            let node = &self.nodes[n];
+            if norm(sub(node.centre, centre)) > node.radius + radius {
+                continue;
+            }
+            match node.children {
+                Some((a, b)) => {
+                    stack.push(a);
+                    stack.push(b);
+                }
+                None => {
+                    for &t in &self.order[node.start..node.end] {
+                        let near = (0..3).all(|d| {
+                            let lo = self.corners[t]
+                                .iter()
+                                .map(|p| p[d])
+                                .fold(f64::INFINITY, f64::min);
+                            let hi = self.corners[t]
+                                .iter()
+                                .map(|p| p[d])
+                                .fold(f64::NEG_INFINITY, f64::max);
+                            lo <= centre[d] + radius && hi >= centre[d] - radius
+                        });
+                        if near {
+                            return true;
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
+
+    /// Inside (winding number > ½) at every voxel centre of a grid (`origin` is the centre of
+    /// voxel (0, 0, 0), C order). Blocks of 4³ voxels that no triangle comes near, and where
+    /// the winding number at the block's centre is clearly 0 or 1 (off ½ by more than ¼), take
+    /// that class whole: away from the mesh the winding number is harmonic and varies slowly.
+    pub fn classify_grid(&self, origin: [f64; 3], h: f64, shape: [usize; 3]) -> Vec<bool> {
+        const B: usize = 4;
+        let [nx, ny, nz] = shape;
+        let blocks = [nx.div_ceil(B), ny.div_ceil(B), nz.div_ceil(B)];
+        let results: Vec<(usize, Vec<bool>)> = (0..blocks[0] * blocks[1] * blocks[2])
+            .into_par_iter()
+            .map(|b| {
+                let bi = [
+                    b / (blocks[1] * blocks[2]),
+                    (b / blocks[2]) % blocks[1],
+                    b % blocks[2],
+                ];
+                let lo: [usize; 3] = core::array::from_fn(|d| bi[d] * B);
+                let hi: [usize; 3] = core::array::from_fn(|d| (lo[d] + B).min(shape[d]));
+                let centre: [f64; 3] =
+                    core::array::from_fn(|d| origin[d] + h * 0.5 * ((lo[d] + hi[d] - 1) as f64));
+                let radius = 0.5
+                    * h
+                    * (((hi[0] - lo[0]).pow(2) + (hi[1] - lo[1]).pow(2) + (hi[2] - lo[2]).pow(2))
+                        as f64)
+                        .sqrt();
+                let count = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+                if !self.any_triangle_near(centre, radius + h) {
+                    let w = self.winding_number(centre);
+                    if (w - 0.5).abs() > 0.25 {
+                        return (b, vec![w > 0.5; count]);
+                    }
+                }
+                let mut out = Vec::with_capacity(count);
+                for i in lo[0]..hi[0] {
+                    for j in lo[1]..hi[1] {
+                        for k in lo[2]..hi[2] {
+                            let p = [
+                                origin[0] + h * i as f64,
+                                origin[1] + h * j as f64,
+                                origin[2] + h * k as f64,
+                            ];
+                            out.push(self.winding_number(p) > 0.5);
+                        }
+                    }
+                }
+                (b, out)
+            })
+            .collect();
+        let mut inside = vec![false; nx * ny * nz];
+        for (b, values) in results {
+            let bi = [
+                b / (blocks[1] * blocks[2]),
+                (b / blocks[2]) % blocks[1],
+                b % blocks[2],
+            ];
+            let lo: [usize; 3] = core::array::from_fn(|d| bi[d] * B);
+            let hi: [usize; 3] = core::array::from_fn(|d| (lo[d] + B).min(shape[d]));
+            let mut v = values.into_iter();
+            for i in lo[0]..hi[0] {
+                for j in lo[1]..hi[1] {
+                    for k in lo[2]..hi[2] {
+                        inside[(i * ny + j) * nz + k] = v.next().unwrap_or(false);
+                    }
+                }
+            }
+        }
+        inside
     }
 }
 
