@@ -149,18 +149,21 @@ impl WindingTree {
             let r = sub(node.centre, p);
             let d = norm(r);
             if d > FAR * node.radius {
-                // Each triangle's solid angle ≈ A·g(c) with g(x) = (x − p)/|x − p|³, expanded
-                // about the cluster's centre to second order: N·g + Σ J:M with J = ∇g.
                 let d3 = d * d * d;
-                let d5 = d3 * d * d;
-                let mut second = 0.0;
-                for i in 0..3 {
-                    for j in 0..3 {
-                        let jij = if i == j { 1.0 / d3 } else { 0.0 } - 3.0 * r[i] * r[j] / d5;
-                        second += jij * node.moment[i][j];
+                sum += dot(node.area, r) / d3;
+                // Each triangle's solid angle ≈ A·g(c) with g(x) = (x − p)/|x − p|³, expanded
+                // about the cluster's centre: N·g + Σ J:M with J = ∇g. The second-order term
+                // falls off as (radius / distance)², so far clusters skip it.
+                if d < 2.0 * FAR * node.radius {
+                    let d5 = d3 * d * d;
+                    let m = &node.moment;
+                    let trace = m[0][0] + m[1][1] + m[2][2];
+                    let mut rmr = 0.0;
+                    for i in 0..3 {
+                        rmr += r[i] * (m[i][0] * r[0] + m[i][1] * r[1] + m[i][2] * r[2]);
                     }
+                    sum += trace / d3 - 3.0 * rmr / d5;
                 }
-                sum += dot(node.area, r) / d3 + second;
                 continue;
             }
             match node.children {
@@ -226,10 +229,21 @@ impl WindingTree {
         false
     }
 
+    /// The class of every point within `radius` of `centre`, when no triangle comes that near
+    /// and the winding number at the centre is clearly 0 or 1 (off ½ by more than ¼): away
+    /// from the mesh the winding number is harmonic and varies slowly.
+    fn clear_class(&self, centre: [f64; 3], radius: f64) -> Option<bool> {
+        if self.any_triangle_near(centre, radius) {
+            return None;
+        }
+        let w = self.winding_number(centre);
+        ((w - 0.5).abs() > 0.25).then_some(w > 0.5)
+    }
+
     /// Inside (winding number > ½) at every voxel centre of a grid (`origin` is the centre of
-    /// voxel (0, 0, 0), C order). Blocks of 4³ voxels that no triangle comes near, and where
-    /// the winding number at the block's centre is clearly 0 or 1 (off ½ by more than ¼), take
-    /// that class whole: away from the mesh the winding number is harmonic and varies slowly.
+    /// voxel (0, 0, 0), C order). Blocks of 4³ voxels, then of 2³, that no triangle comes near
+    /// and where the winding number at the block's centre is clearly 0 or 1 take that class
+    /// whole; the rest are evaluated voxel by voxel.
     pub fn classify_grid(&self, origin: [f64; 3], h: f64, shape: [usize; 3]) -> Vec<bool> {
         const B: usize = 4;
         let [nx, ny, nz] = shape;
@@ -252,22 +266,46 @@ impl WindingTree {
                         as f64)
                         .sqrt();
                 let count = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-                if !self.any_triangle_near(centre, radius + h) {
-                    let w = self.winding_number(centre);
-                    if (w - 0.5).abs() > 0.25 {
-                        return (b, vec![w > 0.5; count]);
-                    }
+                if let Some(inside) = self.clear_class(centre, radius) {
+                    return (b, vec![inside; count]);
                 }
-                let mut out = Vec::with_capacity(count);
-                for i in lo[0]..hi[0] {
-                    for j in lo[1]..hi[1] {
-                        for k in lo[2]..hi[2] {
-                            let p = [
-                                origin[0] + h * i as f64,
-                                origin[1] + h * j as f64,
-                                origin[2] + h * k as f64,
+                // Near the mesh: the same test on sub-blocks of 2³, then voxel by voxel.
+                let mut out = vec![false; count];
+                let (sy, sz) = (hi[1] - lo[1], hi[2] - lo[2]);
+                for i0 in (lo[0]..hi[0]).step_by(2) {
+                    for j0 in (lo[1]..hi[1]).step_by(2) {
+                        for k0 in (lo[2]..hi[2]).step_by(2) {
+                            let (i1, j1, k1) = (
+                                (i0 + 2).min(hi[0]),
+                                (j0 + 2).min(hi[1]),
+                                (k0 + 2).min(hi[2]),
+                            );
+                            let c = [
+                                origin[0] + h * 0.5 * ((i0 + i1 - 1) as f64),
+                                origin[1] + h * 0.5 * ((j0 + j1 - 1) as f64),
+                                origin[2] + h * 0.5 * ((k0 + k1 - 1) as f64),
                             ];
-                            out.push(self.winding_number(p) > 0.5);
+                            let r = 0.5
+                                * h
+                                * (((i1 - i0).pow(2) + (j1 - j0).pow(2) + (k1 - k0).pow(2)) as f64)
+                                    .sqrt();
+                            let whole = self.clear_class(c, r);
+                            for i in i0..i1 {
+                                for j in j0..j1 {
+                                    for k in k0..k1 {
+                                        let at =
+                                            ((i - lo[0]) * sy + (j - lo[1])) * sz + (k - lo[2]);
+                                        out[at] = whole.unwrap_or_else(|| {
+                                            let p = [
+                                                origin[0] + h * i as f64,
+                                                origin[1] + h * j as f64,
+                                                origin[2] + h * k as f64,
+                                            ];
+                                            self.winding_number(p) > 0.5
+                                        });
+                                    }
+                                }
+                            }
                         }
                     }
                 }
