@@ -38,7 +38,9 @@ struct Node {
 /// Triangles per leaf.
 const LEAF: usize = 8;
 /// A cluster counts as far when the query is this many radii from its centre.
-const FAR: f64 = 2.0;
+const FAR: f64 = 1.5;
+/// Clusters within this many times the far distance also get the second-order term.
+const SECOND_ORDER: f64 = 2.5;
 
 /// A mesh prepared for fast winding-number queries.
 pub struct WindingTree {
@@ -154,7 +156,7 @@ impl WindingTree {
                 // Each triangle's solid angle ≈ A·g(c) with g(x) = (x − p)/|x − p|³, expanded
                 // about the cluster's centre: N·g + Σ J:M with J = ∇g. The second-order term
                 // falls off as (radius / distance)², so far clusters skip it.
-                if d < 2.0 * FAR * node.radius {
+                if d < SECOND_ORDER * FAR * node.radius {
                     let d5 = d3 * d * d;
                     let m = &node.moment;
                     let trace = m[0][0] + m[1][1] + m[2][2];

@@ -29,7 +29,7 @@ fn occupancy_agrees_with_winding_numbers_on_every_shipped_mesh() {
         // centre the same way.
         let fast = winding_numbers(&mesh, &centres);
         for (a, b) in w.iter().zip(&fast) {
-            assert!((a - b).abs() < 0.05, "{name}: {a} vs {b}");
+            assert!((a - b).abs() < 0.1, "{name}: {a} vs {b}");
             assert_eq!(*a > 0.5, *b > 0.5, "{name}: {a} vs {b}");
         }
         let agree = v
