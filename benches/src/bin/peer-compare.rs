@@ -250,4 +250,14 @@ fn mesh_workloads(repeats: usize, threads: usize, records: &mut Vec<String>) {
         mesh.triangles().len(),
         stats.cells
     );
+    // For benches/peers/sample_and_march.py: the model and the lattice it was polygonized on.
+    let dir = std::env::temp_dir();
+    let _ = std::fs::write(dir.join("rbf-torus3000.json"), model.to_json());
+    let _ = std::fs::write(
+        dir.join("rbf-torus3000-lattice.json"),
+        format!(
+            "{{\"cells\": {:?}, \"origin\": {:?}, \"cell_size\": {:?}}}",
+            stats.cells, stats.origin, stats.cell_size
+        ),
+    );
 }

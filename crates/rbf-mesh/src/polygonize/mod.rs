@@ -78,8 +78,12 @@ pub enum BlockSkip {
 }
 
 /// Figures of a polygonization.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PolygonizeStats {
+    /// The lattice point (0, 0, 0).
+    pub origin: [f64; 3],
+    /// The edge length of a cube.
+    pub cell_size: f64,
     /// Cubes along x, y, z.
     pub cells: [usize; 3],
     /// Lattice points where f was sampled (not counting root finding).
@@ -194,6 +198,8 @@ pub fn polygonize_grid(
     let lattice = settings.lattice(f)?;
     let (edges, tris, samples, skipped) = grid::cells(f, &lattice, settings.skip);
     let stats = PolygonizeStats {
+        origin: lattice.origin,
+        cell_size: lattice.h,
         cells: lattice.cells.map(|c| c as usize),
         samples,
         skipped_blocks: skipped,
@@ -217,6 +223,8 @@ pub fn polygonize_continuation(
     let lattice = settings.lattice(f)?;
     let (edges, tris, samples) = continuation::cells(f, &lattice, seeds);
     let stats = PolygonizeStats {
+        origin: lattice.origin,
+        cell_size: lattice.h,
         cells: lattice.cells.map(|c| c as usize),
         samples,
         skipped_blocks: 0,
