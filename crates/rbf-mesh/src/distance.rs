@@ -163,15 +163,10 @@ pub fn signed_distance(density: &Volume<f32>) -> Volume<f32> {
             for k in 0..nz {
                 let at = density.index(i, j, k);
                 let d = density.data[at];
-                let class = inside(d);
-                let differs =
-                    |ii: usize, jj: usize, kk: usize| inside(density.get(ii, jj, kk)) != class;
-                let edge = (i > 0 && differs(i - 1, j, k))
-                    || (i + 1 < nx && differs(i + 1, j, k))
-                    || (j > 0 && differs(i, j - 1, k))
-                    || (j + 1 < ny && differs(i, j + 1, k))
-                    || (k > 0 && differs(i, j, k - 1))
-                    || (k + 1 < nz && differs(i, j, k + 1));
+                let edge =
+                    crate::volume::has_other_neighbour(density.shape, (i, j, k), |a, b, c| {
+                        inside(density.get(a, b, c))
+                    });
                 if (d > 0.0 && d < 1.0) || edge {
                     cost[at] = 0.0;
                     offset[at] = (d as f64 - 0.5).clamp(-0.5, 0.5);

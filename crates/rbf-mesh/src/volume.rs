@@ -45,6 +45,23 @@ impl<T: Copy> Volume<T> {
     }
 }
 
+/// True when one of the six face neighbours of voxel (i, j, k) in a grid of `shape` has a
+/// different class than it, with `class(i, j, k)` giving the class of a voxel.
+pub(crate) fn has_other_neighbour(
+    shape: [usize; 3],
+    (i, j, k): (usize, usize, usize),
+    class: impl Fn(usize, usize, usize) -> bool,
+) -> bool {
+    let here = class(i, j, k);
+    let [nx, ny, nz] = shape;
+    (i > 0 && class(i - 1, j, k) != here)
+        || (i + 1 < nx && class(i + 1, j, k) != here)
+        || (j > 0 && class(i, j - 1, k) != here)
+        || (j + 1 < ny && class(i, j + 1, k) != here)
+        || (k > 0 && class(i, j, k - 1) != here)
+        || (k + 1 < nz && class(i, j, k + 1) != here)
+}
+
 impl Volume<f32> {
     /// The volume as a NumPy `.npy` file (version 1.0, little-endian `float32`, C order,
     /// shape `(nx, ny, nz)`), which `numpy.load` reads as an array indexed `[x][y][z]`.

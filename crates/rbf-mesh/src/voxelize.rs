@@ -170,28 +170,14 @@ pub fn voxelize(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>,
             },
             order.map(|i| tri[i]),
         )));
-        let xs = [c[0][0], c[1][0], c[2][0]];
-        let ys = [c[0][1], c[1][1], c[2][1]];
-        let x0 = to_ray(
-            xs.iter().copied().fold(f64::INFINITY, f64::min),
-            volume.origin[0],
-        )
-        .max(0.0) as usize;
-        let x1 = (to_ray(
-            xs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            volume.origin[0],
-        ) + 1.0)
-            .clamp(0.0, rx as f64 - 1.0) as usize;
-        let y0 = to_ray(
-            ys.iter().copied().fold(f64::INFINITY, f64::min),
-            volume.origin[1],
-        )
-        .max(0.0) as usize;
-        let y1 = (to_ray(
-            ys.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            volume.origin[1],
-        ) + 1.0)
-            .clamp(0.0, ry as f64 - 1.0) as usize;
+        let span = |d: usize, rays: usize| {
+            let lo = c.iter().map(|p| p[d]).fold(f64::INFINITY, f64::min);
+            let hi = c.iter().map(|p| p[d]).fold(f64::NEG_INFINITY, f64::max);
+            let first = to_ray(lo, volume.origin[d]).max(0.0) as usize;
+            let last = (to_ray(hi, volume.origin[d]) + 1.0).clamp(0.0, rays as f64 - 1.0) as usize;
+            (first, last)
+        };
+        let ((x0, x1), (y0, y1)) = (span(0, rx), span(1, ry));
         for x in x0..=x1 {
             for y in y0..=y1 {
                 bins[x * ry + y].push(t as u32);
@@ -249,7 +235,7 @@ pub fn voxelize(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>,
 fn voxelize_winding(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>, MeshError> {
     let mut volume = voxel_grid(mesh, settings)?;
     let tree = crate::WindingTree::new(mesh);
-    let [nx, ny, nz] = volume.shape;
+    let [_, ny, nz] = volume.shape;
     let coords = |p: usize| (p / (ny * nz), (p / nz) % ny, p % nz);
     let inside = tree.classify_grid(volume.origin, volume.voxel_size, volume.shape);
     let s = settings.supersampling;
@@ -261,14 +247,10 @@ fn voxelize_winding(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f
         .map(|p| {
             let (i, j, k) = coords(p);
             let class = inside[p];
-            let differs =
-                |ii: usize, jj: usize, kk: usize| inside[(ii * ny + jj) * nz + kk] != class;
-            let boundary = (i > 0 && differs(i - 1, j, k))
-                || (i + 1 < nx && differs(i + 1, j, k))
-                || (j > 0 && differs(i, j - 1, k))
-                || (j + 1 < ny && differs(i, j + 1, k))
-                || (k > 0 && differs(i, j, k - 1))
-                || (k + 1 < nz && differs(i, j, k + 1));
+            let boundary =
+                crate::volume::has_other_neighbour(volume_ref.shape, (i, j, k), |a, b, c| {
+                    inside[(a * ny + b) * nz + c]
+                });
             if !boundary {
                 return if class { 1.0 } else { 0.0 };
             }

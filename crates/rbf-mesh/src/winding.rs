@@ -250,16 +250,20 @@ impl WindingTree {
         const B: usize = 4;
         let [nx, ny, nz] = shape;
         let blocks = [nx.div_ceil(B), ny.div_ceil(B), nz.div_ceil(B)];
+        // The voxel ranges [lo, hi) of block b.
+        let range = |b: usize| -> ([usize; 3], [usize; 3]) {
+            let bi = [
+                b / (blocks[1] * blocks[2]),
+                (b / blocks[2]) % blocks[1],
+                b % blocks[2],
+            ];
+            let lo: [usize; 3] = core::array::from_fn(|d| bi[d] * B);
+            (lo, core::array::from_fn(|d| (lo[d] + B).min(shape[d])))
+        };
         let results: Vec<(usize, Vec<bool>)> = (0..blocks[0] * blocks[1] * blocks[2])
             .into_par_iter()
             .map(|b| {
-                let bi = [
-                    b / (blocks[1] * blocks[2]),
-                    (b / blocks[2]) % blocks[1],
-                    b % blocks[2],
-                ];
-                let lo: [usize; 3] = core::array::from_fn(|d| bi[d] * B);
-                let hi: [usize; 3] = core::array::from_fn(|d| (lo[d] + B).min(shape[d]));
+                let (lo, hi) = range(b);
                 let centre: [f64; 3] =
                     core::array::from_fn(|d| origin[d] + h * 0.5 * ((lo[d] + hi[d] - 1) as f64));
                 let radius = 0.5
@@ -316,13 +320,7 @@ impl WindingTree {
             .collect();
         let mut inside = vec![false; nx * ny * nz];
         for (b, values) in results {
-            let bi = [
-                b / (blocks[1] * blocks[2]),
-                (b / blocks[2]) % blocks[1],
-                b % blocks[2],
-            ];
-            let lo: [usize; 3] = core::array::from_fn(|d| bi[d] * B);
-            let hi: [usize; 3] = core::array::from_fn(|d| (lo[d] + B).min(shape[d]));
+            let (lo, hi) = range(b);
             let mut v = values.into_iter();
             for i in lo[0]..hi[0] {
                 for j in lo[1]..hi[1] {
