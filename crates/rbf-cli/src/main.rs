@@ -1,6 +1,7 @@
 //! `rbf`: variational implicit surfaces from the shell.
 
 mod check;
+mod convert;
 mod demo;
 mod eval;
 mod failure;
@@ -46,6 +47,9 @@ enum Command {
     /// Evaluate a model at points: one line per point, the value (then the gradient).
     #[command(after_help = eval::HELP)]
     Eval(eval::EvalArgs),
+    /// Convert a polygon mesh to an implicit surface model.
+    #[command(after_help = convert::HELP)]
+    Convert(convert::ConvertArgs),
     /// Polygonize a model's surface into a triangle mesh (OBJ, PLY or STL).
     #[command(after_help = mesh::HELP)]
     Mesh(mesh::MeshArgs),
@@ -106,6 +110,7 @@ fn main() -> ExitCode {
         Command::Fit(args) => fit::run(&args, cli.quiet),
         Command::Eval(args) => eval::run(&args),
         Command::Check(args) => check::run(&args),
+        Command::Convert(args) => convert::run(&args, cli.quiet),
         Command::Mesh(args) => mesh::run(&args, cli.quiet),
         Command::Voxelize(args) => voxelize::run(&args, cli.quiet),
         Command::Demo { output } => demo::run(&output, cli.quiet),

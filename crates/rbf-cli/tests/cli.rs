@@ -431,3 +431,52 @@ fn voxelize_writes_npy_and_its_metadata() {
         4 * shape.iter().product::<usize>()
     );
 }
+
+#[test]
+fn convert_then_mesh_keeps_the_genus() {
+    let dir = tempfile::tempdir().unwrap();
+    let torus = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/torus.obj");
+    let model = dir.path().join("torus.json");
+    let o = rbf(
+        &[
+            "convert",
+            torus,
+            "-o",
+            model.to_str().unwrap(),
+            "--max-constraints",
+            "800",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("of 2304 vertices used (thinned evenly)"),
+        "{}",
+        stderr(&o)
+    );
+    let out = dir.path().join("smooth.ply");
+    let o = rbf(
+        &[
+            "mesh",
+            model.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--resolution",
+            "48",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("watertight, genus 1, 1 component"),
+        "{}",
+        stderr(&o)
+    );
+    let bad = write(
+        dir.path(),
+        "flat.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n",
+    );
+    let o = rbf(&["convert", bad.to_str().unwrap(), "-o", "/dev/null"], None);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}

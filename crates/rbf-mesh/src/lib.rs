@@ -25,6 +25,7 @@ mod hash;
 mod io;
 mod mesh;
 mod polygonize;
+mod shapes;
 mod volume;
 mod voxelize;
 mod winding;

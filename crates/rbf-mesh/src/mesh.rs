@@ -18,9 +18,9 @@ use crate::MeshError;
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct TriMesh {
-    positions: Vec<[f64; 3]>,
-    triangles: Vec<[u32; 3]>,
-    normals: Option<Vec<[f64; 3]>>,
+    pub(crate) positions: Vec<[f64; 3]>,
+    pub(crate) triangles: Vec<[u32; 3]>,
+    pub(crate) normals: Option<Vec<[f64; 3]>>,
 }
 
 impl TriMesh {

@@ -1,0 +1,29 @@
+//! # rbf-convert
+//!
+//! Polygon meshes to variational implicit surfaces.
+//!
+//! [`convert_normals`] is the method of Turk & O'Brien (2002, §4.3): a boundary constraint at
+//! each vertex and a normal constraint a small distance inside, against the vertex normal. For
+//! meshes with more vertices than a dense solve should take, an evenly spread subset of the
+//! vertices (Poisson-disk on the surface) is used, and the report says so.
+//!
+//! ```
+//! use rbf_convert::{NormalSettings, convert_normals};
+//! use rbf_mesh::TriMesh;
+//! // An octahedron: six vertices, each with an outward normal.
+//! let mesh = TriMesh::new(
+//!     vec![[1., 0., 0.], [-1., 0., 0.], [0., 1., 0.], [0., -1., 0.], [0., 0., 1.], [0., 0., -1.]],
+//!     vec![[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]],
+//! )
+//! .unwrap();
+//! let (model, report) = convert_normals(&mesh, &NormalSettings::default()).unwrap();
+//! assert_eq!(report.vertices_used, 6);
+//! assert!(model.interpolant.value(&[0.0; 3]) > 0.0); // inside
+//! assert!(model.interpolant.value(&[1.0, 0.0, 0.0]).abs() < 1e-9); // through the vertices
+//! ```
+
+mod normals;
+mod poisson;
+
+pub use normals::{ConvertError, NormalReport, NormalSettings, convert_normals, vertex_normals};
+pub use poisson::poisson_subset;

@@ -1,0 +1,125 @@
+//! Conversion by normal constraints (paper 000, §4.3).
+
+use rbf_core::{Constraint, FitError, FitSettings, Model, NormalOffset};
+use rbf_mesh::TriMesh;
+
+use crate::poisson_subset;
+
+/// Settings of the normal-constraint conversion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalSettings {
+    /// Offset of each normal constraint; 0.01 of the bounding box's longest side by default
+    /// (the papers' 0.01 for a model in a unit cube).
+    pub offset: NormalOffset,
+    /// At most this many vertices are used (each gives two rows); more are thinned to an evenly
+    /// spread subset. 4000 by default (8000 rows, a few seconds to solve).
+    pub max_vertices: usize,
+    /// Regularization λ of the fit.
+    pub lambda: f64,
+}
+
+impl Default for NormalSettings {
+    fn default() -> Self {
+        Self {
+            offset: NormalOffset::Relative(0.01),
+            max_vertices: 4000,
+            lambda: 0.0,
+        }
+    }
+}
+
+/// What the conversion did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalReport {
+    /// Vertices of the mesh used by its triangles.
+    pub vertices: usize,
+    /// Vertices that became constraints.
+    pub vertices_used: usize,
+    /// Vertices skipped because their normal has zero length (e.g. on a fold).
+    pub without_normal: usize,
+    /// Whether the vertices were thinned to `max_vertices`.
+    pub thinned: bool,
+    /// The fit's residual and condition estimate.
+    pub fit: rbf_core::FitReport,
+}
+
+/// Why a conversion failed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ConvertError {
+    /// No vertex has a usable normal.
+    #[error("no vertex of the mesh has a usable normal (all faces degenerate?)")]
+    NoNormals,
+    /// The fit failed.
+    #[error(transparent)]
+    Fit(#[from] FitError),
+}
+
+/// Area-weighted vertex normals from the faces (the mesh's own normals if it has them);
+/// zero for a vertex used by no face or whose faces cancel.
+pub fn vertex_normals(mesh: &TriMesh) -> Vec<[f64; 3]> {
+    if let Some(n) = mesh.normals() {
+        return n.to_vec();
+    }
+    let mut normals = vec![[0.0; 3]; mesh.positions().len()];
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        let a = mesh.area_vector(t);
+        for &v in tri {
+            for d in 0..3 {
+                normals[v as usize][d] += a[d];
+            }
+        }
+    }
+    normals
+}
+
+/// Converts a mesh to an interpolating implicit surface through its vertices, with normal
+/// constraints against the vertex normals, fitted with rbf-solve.
+pub fn convert_normals(
+    mesh: &TriMesh,
+    settings: &NormalSettings,
+) -> Result<(Model<3>, NormalReport), ConvertError> {
+    let normals = vertex_normals(mesh);
+    let mut used = vec![false; mesh.positions().len()];
+    for t in mesh.triangles() {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let candidates: Vec<usize> = (0..used.len())
+        .filter(|&v| used[v] && normals[v].iter().any(|&c| c != 0.0))
+        .collect();
+    let vertices = used.iter().filter(|&&u| u).count();
+    if candidates.is_empty() {
+        return Err(ConvertError::NoNormals);
+    }
+    let points: Vec<[f64; 3]> = candidates.iter().map(|&v| mesh.positions()[v]).collect();
+    let chosen = poisson_subset(&points, settings.max_vertices);
+    let constraints: Vec<Constraint<3>> = chosen
+        .iter()
+        .map(|&i| {
+            let v = candidates[i];
+            Constraint::normal(mesh.positions()[v], normals[v])
+        })
+        .collect();
+    let fit_settings = FitSettings {
+        lambda: settings.lambda,
+        normal_offset: settings.offset,
+        ..Default::default()
+    };
+    let fit = rbf_solve::fit(&constraints, &fit_settings)?;
+    let report = NormalReport {
+        vertices,
+        vertices_used: constraints.len(),
+        without_normal: vertices - candidates.len(),
+        thinned: chosen.len() < candidates.len(),
+        fit: fit.report,
+    };
+    let model = Model {
+        constraints,
+        settings: fit_settings,
+        interpolant: fit.interpolant,
+        report: Some(fit.report),
+    };
+    Ok((model, report))
+}
