@@ -4,6 +4,9 @@ use std::path::Path;
 use std::time::Instant;
 
 use rbf_core::{Constraint, FitSettings, Model};
+use rbf_mesh::{
+    PolygonizeSettings, Resolution, polygonize_continuation, surface_seeds, write_mesh,
+};
 
 use crate::failure::{BAD_INPUT, Failure};
 use crate::io::write_atomically;
@@ -125,8 +128,32 @@ pub(crate) fn run(dir: &Path, quiet: bool) -> Result<(), Failure> {
             report: Some(fit.report),
         };
         write_atomically(&path, model.to_json().as_bytes())?;
+        // Its surface as a mesh, by continuation from the constraints.
+        let start = Instant::now();
+        let settings = PolygonizeSettings {
+            resolution: Resolution::Cells(96),
+            ..Default::default()
+        };
+        let (mesh, _) =
+            polygonize_continuation(&model.interpolant.view(), &surface_seeds(&model), &settings)
+                .map_err(|e| Failure::new(BAD_INPUT, format!("{name}: {e}")))?;
+        let mesh_path = dir.join(format!("{name}.obj"));
+        write_mesh(&mesh_path, &mesh).map_err(|e| Failure::new(BAD_INPUT, e.to_string()))?;
+        let r = mesh.check();
+        let meshed = format!(
+            "polygonized in {:.3} s: {} triangles, {}, genus {}; wrote {}",
+            start.elapsed().as_secs_f64(),
+            r.triangles,
+            if r.is_watertight() {
+                "watertight"
+            } else {
+                "open"
+            },
+            r.genus.map_or("-".into(), |g| g.to_string()),
+            mesh_path.display()
+        );
         say(format!(
-            "{what}\n  {} rows fitted in {seconds:.3} s ({:?}), residual {:.1e}, condition ≈ {:.1e}\n  {check}\n  wrote {}",
+            "{what}\n  {} rows fitted in {seconds:.3} s ({:?}), residual {:.1e}, condition ≈ {:.1e}\n  {check}\n  wrote {}\n  {meshed}",
             fit.report.rows,
             fit.report.method,
             fit.report.residual,
@@ -134,9 +161,9 @@ pub(crate) fn run(dir: &Path, quiet: bool) -> Result<(), Failure> {
             path.display()
         ));
     }
-    say(
-        "evaluate a model: printf '0 0 0\\n2 0 0\\n' | rbf eval rbf-demo/figure2-blob.json -"
-            .into(),
-    );
+    say(format!(
+        "next: printf '0 0 0\\n2 0 0\\n' | rbf eval {0}/figure2-blob.json -   or   rbf check {0}/torus-2000.obj",
+        dir.display()
+    ));
     Ok(())
 }

@@ -266,9 +266,15 @@ fn demo_runs_and_writes_models() {
     let out = dir.path().join("demo");
     let o = rbf(&["demo", "-o", out.to_str().unwrap()], None);
     assert!(o.status.success(), "{}", stderr(&o));
-    for name in ["figure2-blob.json", "sculpt-start.json", "torus-2000.json"] {
-        assert!(out.join(name).exists(), "{name}");
+    for name in ["figure2-blob", "sculpt-start", "torus-2000"] {
+        assert!(out.join(format!("{name}.json")).exists(), "{name}");
+        assert!(out.join(format!("{name}.obj")).exists(), "{name}");
     }
+    assert!(
+        String::from_utf8(o.stdout)
+            .unwrap()
+            .contains("watertight, genus 1")
+    );
 }
 
 #[test]
