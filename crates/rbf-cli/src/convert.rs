@@ -4,7 +4,11 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use rbf_convert::{NormalSettings, convert_normals};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rbf_convert::{
+    ConvertError, IterativeReport, IterativeSettings, NormalSettings, convert_iterative,
+    convert_normals,
+};
 use rbf_core::NormalOffset;
 use rbf_mesh::read_mesh;
 
@@ -13,13 +17,20 @@ use crate::failure::{BAD_INPUT, Failure};
 use crate::io::write_atomically;
 
 pub(crate) const HELP: &str = "\
-With --method normals (paper 000, §4.3) every vertex becomes a boundary constraint with a normal
+--method iterative (Yngve & Turk): voxelize the mesh (--resolution voxels along its longest side,
+winding numbers if it is not watertight), then fit, measure the two-way error between the goal's
+and the surface's boundary voxels, and add constraints where it is largest, until the error is
+at most a voxel, 4 iterations bring no improvement, --max-iterations pass or --max-constraints
+are placed. The best model seen is written; --report writes every iteration's figures as JSON.
+
+--method normals (Turk & O'Brien, §4.3): every vertex becomes a boundary constraint with a normal
 constraint a small distance inside, against the vertex normal; meshes with more vertices than
 --max-constraints are thinned to an evenly spread subset first.
 
 Examples:
   rbf convert bunny.obj -o bunny.json
-  rbf convert scan.ply -o scan.json --max-constraints 2000 --lambda 1e-6
+  rbf convert bunny.obj -o bunny.json --resolution 220 --report bunny-report.json
+  rbf convert scan.ply -o scan.json --method normals --max-constraints 2000
   rbf mesh bunny.json -o smooth_bunny.obj";
 
 #[derive(Args, Debug)]
@@ -30,60 +41,164 @@ pub(crate) struct ConvertArgs {
     #[arg(short, long, value_name = "MODEL.json")]
     output: PathBuf,
     /// Conversion method.
-    #[arg(long, value_enum, default_value_t = Method::Normals)]
+    #[arg(long, value_enum, default_value_t = Method::Iterative)]
     method: Method,
-    /// Most vertices used (each gives two constraint rows).
-    #[arg(long, value_name = "N", default_value_t = 4000)]
-    max_constraints: usize,
+    /// Most constraints placed [default: 5000 iterative; 4000 vertices (two rows each) normals].
+    #[arg(long, value_name = "N")]
+    max_constraints: Option<usize>,
+    /// Voxels along the longest side of the mesh's bounding box (iterative).
+    #[arg(long, value_name = "N", default_value_t = 128)]
+    resolution: usize,
+    /// Most iterations (iterative).
+    #[arg(long, value_name = "N", default_value_t = 30)]
+    max_iterations: usize,
+    /// Write every iteration's figures here as JSON (iterative).
+    #[arg(long, value_name = "REPORT.json")]
+    report: Option<PathBuf>,
     /// Regularization λ of the fit.
     #[arg(long, value_name = "L", default_value_t = 0.0)]
     lambda: f64,
-    /// Normal constraint offset as a fraction of the bounding box's longest side.
+    /// Normal constraint offset as a fraction of the bounding box's longest side (normals).
     #[arg(long, value_name = "F", default_value_t = 0.01)]
     offset: f64,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 enum Method {
+    /// Voxelize, then add constraints where the error is largest, iteration by iteration.
+    Iterative,
     /// A boundary and a normal constraint at each vertex.
     Normals,
 }
 
 pub(crate) fn run(args: &ConvertArgs, quiet: bool) -> Result<(), Failure> {
     let mesh = read_mesh(&args.mesh).map_err(|e| mesh_failure(&e))?;
-    let Method::Normals = args.method;
-    let settings = NormalSettings {
-        offset: NormalOffset::Relative(args.offset),
-        max_vertices: args.max_constraints,
-        lambda: args.lambda,
+    let source = args.mesh.display().to_string();
+    let failure = |e: ConvertError| match e {
+        ConvertError::Fit(f) => Failure::fit(&source, &f),
+        other => Failure::new(BAD_INPUT, format!("{source}: {other}")),
     };
     let start = Instant::now();
-    let spinner = crate::fit::spinner(quiet, "fitting normal constraints".into());
-    let result = convert_normals(&mesh, &settings);
-    spinner.finish_and_clear();
-    let source = args.mesh.display().to_string();
-    let (model, report) = result.map_err(|e| match e {
-        rbf_convert::ConvertError::Fit(f) => Failure::fit(&source, &f),
-        other => Failure::new(BAD_INPUT, format!("{source}: {other}")),
-    })?;
-    write_atomically(&args.output, model.to_json().as_bytes())?;
-    if !quiet {
-        let thinned = if report.thinned {
-            " (thinned evenly)"
-        } else {
-            ""
-        };
-        eprintln!(
-            "{} of {} vertices used{thinned}, {} without a normal; {} rows, residual {:.1e}, condition ≈ {:.1e}; {:.2} s; wrote {}",
-            report.vertices_used,
-            report.vertices,
-            report.without_normal,
-            report.fit.rows,
-            report.fit.residual,
-            report.fit.condition,
-            start.elapsed().as_secs_f64(),
-            args.output.display()
-        );
+    match args.method {
+        Method::Normals => {
+            let settings = NormalSettings {
+                offset: NormalOffset::Relative(args.offset),
+                max_vertices: args.max_constraints.unwrap_or(4000),
+                lambda: args.lambda,
+            };
+            let spinner = crate::fit::spinner(quiet, "fitting normal constraints".into());
+            let result = convert_normals(&mesh, &settings);
+            spinner.finish_and_clear();
+            let (model, report) = result.map_err(failure)?;
+            write_atomically(&args.output, model.to_json().as_bytes())?;
+            if !quiet {
+                let thinned = if report.thinned {
+                    " (thinned evenly)"
+                } else {
+                    ""
+                };
+                eprintln!(
+                    "{} of {} vertices used{thinned}, {} without a normal; {} rows, residual {:.1e}, condition ≈ {:.1e}; {:.2} s; wrote {}",
+                    report.vertices_used,
+                    report.vertices,
+                    report.without_normal,
+                    report.fit.rows,
+                    report.fit.residual,
+                    report.fit.condition,
+                    start.elapsed().as_secs_f64(),
+                    args.output.display()
+                );
+            }
+        }
+        Method::Iterative => {
+            let settings = IterativeSettings {
+                resolution: args.resolution,
+                max_iterations: args.max_iterations,
+                max_constraints: args.max_constraints.unwrap_or(5000),
+                lambda: args.lambda,
+                ..Default::default()
+            };
+            let bar = ProgressBar::new(settings.max_iterations as u64);
+            if quiet {
+                bar.set_draw_target(ProgressDrawTarget::hidden());
+            }
+            bar.set_style(
+                ProgressStyle::with_template("{bar:30} {pos}/{len} iterations {msg}")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            );
+            bar.set_message("voxelizing");
+            let result = convert_iterative(&mesh, &settings, |it| {
+                bar.set_position(it.iteration as u64);
+                bar.set_message(format!(
+                    "max {:.2} / RMS {:.2} voxels, {} constraints",
+                    it.max_error,
+                    it.rms_error,
+                    it.boundary + it.interior + it.exterior
+                ));
+            });
+            bar.finish_and_clear();
+            let (model, report) = result.map_err(failure)?;
+            write_atomically(&args.output, model.to_json().as_bytes())?;
+            if let Some(path) = &args.report {
+                write_atomically(path, report_json(&report).as_bytes())?;
+            }
+            if !quiet {
+                let best = report.iterations[report
+                    .best
+                    .saturating_sub(1)
+                    .min(report.iterations.len() - 1)];
+                eprintln!(
+                    "{} × {} × {} voxels{}; best of {} iterations: {}: max error {:.2} voxels, RMS {:.2}, {} boundary / {} interior / {} exterior constraints; {:.1} s; wrote {}",
+                    report.shape[0],
+                    report.shape[1],
+                    report.shape[2],
+                    if report.watertight {
+                        ""
+                    } else {
+                        " (not watertight: winding numbers)"
+                    },
+                    report.iterations.len(),
+                    best.iteration,
+                    best.max_error,
+                    best.rms_error,
+                    best.boundary,
+                    best.interior,
+                    best.exterior,
+                    start.elapsed().as_secs_f64(),
+                    args.output.display()
+                );
+            }
+        }
     }
     Ok(())
+}
+
+/// The report as JSON: the grid, and every iteration's figures.
+fn report_json(report: &IterativeReport) -> String {
+    let iterations: Vec<serde_json::Value> = report
+        .iterations
+        .iter()
+        .map(|it| {
+            serde_json::json!({
+                "iteration": it.iteration,
+                "boundary": it.boundary,
+                "interior": it.interior,
+                "exterior": it.exterior,
+                "max_error_voxels": it.max_error,
+                "rms_error_voxels": it.rms_error,
+                "fit_seconds": it.fit_seconds,
+                "evaluate_seconds": it.evaluate_seconds,
+                "distance_seconds": it.distance_seconds,
+                "select_seconds": it.select_seconds,
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "shape": report.shape,
+        "voxel_size": report.voxel_size,
+        "watertight": report.watertight,
+        "best_iteration": report.best,
+        "iterations": iterations,
+    })
+    .to_string()
 }

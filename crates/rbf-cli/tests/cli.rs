@@ -448,6 +448,8 @@ fn convert_then_mesh_keeps_the_genus() {
             torus,
             "-o",
             model.to_str().unwrap(),
+            "--method",
+            "normals",
             "--max-constraints",
             "800",
         ],
@@ -484,4 +486,53 @@ fn convert_then_mesh_keeps_the_genus() {
     );
     let o = rbf(&["convert", bad.to_str().unwrap(), "-o", "/dev/null"], None);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn iterative_convert_reports_every_iteration() {
+    let dir = tempfile::tempdir().unwrap();
+    let knot = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/knot.obj");
+    let model = dir.path().join("knot.json");
+    let report = dir.path().join("report.json");
+    let o = rbf(
+        &[
+            "convert",
+            knot,
+            "-o",
+            model.to_str().unwrap(),
+            "--resolution",
+            "48",
+            "--report",
+            report.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("max error"), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&report).unwrap();
+    assert!(
+        text.contains("\"iterations\"")
+            && text.contains("\"max_error_voxels\"")
+            && text.contains("\"fit_seconds\""),
+        "{text}"
+    );
+    let out = dir.path().join("knot.obj");
+    let o = rbf(
+        &[
+            "mesh",
+            model.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--method",
+            "grid",
+            "--resolution",
+            "64",
+        ],
+        None,
+    );
+    assert!(
+        stderr(&o).contains("genus 1, 1 component"),
+        "{}",
+        stderr(&o)
+    );
 }

@@ -22,8 +22,10 @@
 //! assert!(model.interpolant.value(&[1.0, 0.0, 0.0]).abs() < 1e-9); // through the vertices
 //! ```
 
+mod iterative;
 mod normals;
 mod poisson;
 
+pub use iterative::{IterationReport, IterativeReport, IterativeSettings, convert_iterative};
 pub use normals::{ConvertError, NormalReport, NormalSettings, convert_normals, vertex_normals};
 pub use poisson::poisson_subset;

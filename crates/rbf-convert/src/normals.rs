@@ -53,6 +53,9 @@ pub enum ConvertError {
     /// The fit failed.
     #[error(transparent)]
     Fit(#[from] FitError),
+    /// The mesh could not be voxelized, or gave an empty volume.
+    #[error("{0}")]
+    Mesh(String),
 }
 
 /// Area-weighted vertex normals from the faces (the mesh's own normals if it has them);

@@ -46,8 +46,14 @@ impl<T: Copy> Volume<T> {
 }
 
 /// True when one of the six face neighbours of voxel (i, j, k) in a grid of `shape` has a
-/// different class than it, with `class(i, j, k)` giving the class of a voxel.
-pub(crate) fn has_other_neighbour(
+/// different class than it, with `class(i, j, k)` giving the class of a voxel: a boundary voxel.
+///
+/// ```
+/// let inside = |i: usize, _: usize, _: usize| i < 2;
+/// assert!(rbf_mesh::has_other_neighbour([4, 1, 1], (1, 0, 0), inside));
+/// assert!(!rbf_mesh::has_other_neighbour([4, 1, 1], (0, 0, 0), inside));
+/// ```
+pub fn has_other_neighbour(
     shape: [usize; 3],
     (i, j, k): (usize, usize, usize),
     class: impl Fn(usize, usize, usize) -> bool,

@@ -1,0 +1,101 @@
+//! The iterative conversion (paper 001) on the shipped meshes at resolution 64.
+
+use rbf_convert::{IterativeSettings, convert_iterative};
+use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_grid, read_mesh};
+
+fn data(name: &str) -> std::path::PathBuf {
+    std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data/meshes")
+        .join(name)
+}
+
+#[test]
+fn shipped_meshes_convert_within_two_voxels_with_their_genus() {
+    for (name, genus) in [("torus.obj", 1), ("knot.obj", 1), ("spot.obj", 0)] {
+        let mesh = read_mesh(&data(name)).unwrap();
+        let s = IterativeSettings {
+            resolution: 64,
+            ..Default::default()
+        };
+        let (model, report) = convert_iterative(&mesh, &s, |_| {}).unwrap();
+        let best = report.iterations[report.best - 1];
+        assert!(best.max_error <= 2.0, "{name}: {best:?}");
+        assert!(best.rms_error <= 0.4, "{name}: {best:?}");
+        let f = model.interpolant.view();
+        let p = PolygonizeSettings {
+            resolution: Resolution::CellSize(report.voxel_size),
+            ..Default::default()
+        };
+        let (surface, _) = polygonize_grid(&f, &p).unwrap();
+        let r = surface.check();
+        assert!(r.is_watertight(), "{name}: {r:?}");
+        assert_eq!(r.genus, Some(genus), "{name}");
+        assert_eq!(r.components, 1, "{name}");
+        // Independently of the loop's own metric: sampled two-way distances between the
+        // original mesh and the polygonized result, within two voxels.
+        let h = report.voxel_size;
+        let step = (surface.positions().len() / 300).max(1);
+        for p in surface.positions().iter().step_by(step) {
+            let d = (0..mesh.triangles().len())
+                .map(|t| point_triangle(*p, mesh.corners(t)))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                d <= 2.0 * h,
+                "{name}: a surface point is {} voxels from the mesh",
+                d / h
+            );
+        }
+        for p in mesh
+            .positions()
+            .iter()
+            .step_by((mesh.positions().len() / 300).max(1))
+        {
+            let (v, g) = f.value_and_gradient(p);
+            let d = v.abs() / (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+            assert!(
+                d <= 2.0 * h,
+                "{name}: a mesh vertex is {} voxels from the surface",
+                d / h
+            );
+        }
+    }
+}
+
+/// Distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5).
+fn point_triangle(p: [f64; 3], [a, b, c]: [[f64; 3]; 3]) -> f64 {
+    let sub = |x: [f64; 3], y: [f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+    let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    let at = |u: f64, v: f64| -> [f64; 3] {
+        core::array::from_fn(|d| a[d] + u * (b[d] - a[d]) + v * (c[d] - a[d]))
+    };
+    let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
+    let (d1, d2) = (dot(ab, ap), dot(ac, ap));
+    let closest = if d1 <= 0.0 && d2 <= 0.0 {
+        a
+    } else {
+        let bp = sub(p, b);
+        let (d3, d4) = (dot(ab, bp), dot(ac, bp));
+        let cp = sub(p, c);
+        let (d5, d6) = (dot(ab, cp), dot(ac, cp));
+        let vc = d1 * d4 - d3 * d2;
+        let vb = d5 * d2 - d1 * d6;
+        let va = d3 * d6 - d5 * d4;
+        if d3 >= 0.0 && d4 <= d3 {
+            b
+        } else if d6 >= 0.0 && d5 <= d6 {
+            c
+        } else if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+            at(d1 / (d1 - d3), 0.0)
+        } else if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+            at(0.0, d2 / (d2 - d6))
+        } else if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+            let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+            core::array::from_fn(|d| b[d] + w * (c[d] - b[d]))
+        } else {
+            let denom = 1.0 / (va + vb + vc);
+            at(vb * denom, vc * denom)
+        }
+    };
+    let d = sub(p, closest);
+    dot(d, d).sqrt()
+}
