@@ -236,7 +236,7 @@ impl Goal {
         let inside: Vec<bool> = density.data.iter().map(|&d| d >= 0.5).collect();
         if !inside.iter().any(|&b| b) {
             return Err(ConvertError::Mesh(
-                "no voxel is inside the mesh at this resolution: raise the resolution".into(),
+                "no voxel is inside the mesh: it is flat or open, or the resolution is too coarse to hold its interior".into(),
             ));
         }
         let sd_volume = signed_distance(density);

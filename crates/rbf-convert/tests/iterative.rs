@@ -99,3 +99,60 @@ fn point_triangle(p: [f64; 3], [a, b, c]: [[f64; 3]; 3]) -> f64 {
     let d = sub(p, closest);
     dot(d, d).sqrt()
 }
+
+#[test]
+fn meshes_with_holes_convert_through_winding_numbers() {
+    let torus = read_mesh(&data("torus.obj")).unwrap();
+    let tris: Vec<[u32; 3]> = torus
+        .triangles()
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| t % 61 != 7)
+        .map(|(_, t)| *t)
+        .collect();
+    let holed = rbf_mesh::TriMesh::new(torus.positions().to_vec(), tris).unwrap();
+    let s = IterativeSettings {
+        resolution: 40,
+        ..Default::default()
+    };
+    let (model, report) = convert_iterative(&holed, &s, |_| {}).unwrap();
+    assert!(!report.watertight);
+    let best = report.iterations[report.best - 1];
+    assert!(best.max_error <= 2.0, "{best:?}");
+    let p = PolygonizeSettings {
+        resolution: Resolution::CellSize(report.voxel_size),
+        ..Default::default()
+    };
+    let (surface, _) = polygonize_grid(&model.interpolant.view(), &p).unwrap();
+    assert_eq!(surface.check().genus, Some(1));
+}
+
+#[test]
+fn flat_meshes_and_hopeless_resolutions_are_clear_errors() {
+    let flat = rbf_mesh::TriMesh::new(
+        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        vec![[0, 1, 2]],
+    )
+    .unwrap();
+    let e = convert_iterative(
+        &flat,
+        &IterativeSettings {
+            resolution: 16,
+            ..Default::default()
+        },
+        |_| {},
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("no voxel is inside"), "{e}");
+    let torus = read_mesh(&data("torus.obj")).unwrap();
+    let e = convert_iterative(
+        &torus,
+        &IterativeSettings {
+            resolution: 1,
+            ..Default::default()
+        },
+        |_| {},
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("too coarse"), "{e}");
+}
