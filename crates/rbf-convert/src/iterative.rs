@@ -290,15 +290,11 @@ impl Goal {
         let c = self.coords(v);
         let g = self.gradient(c);
         let g2: f64 = g.iter().map(|x| x * x).sum();
-        let step = if g2 > 0.0 {
-            (-self.sd[v] / g2).clamp(-1.0, 1.0)
-        } else {
-            0.0
-        };
-        let norm = g2.sqrt().max(1e-12);
-        let moved: [f64; 3] =
-            core::array::from_fn(|d| c[d] as f64 + step * g[d] * (g2.sqrt() / norm));
-        self.point(moved)
+        // One Newton step toward sd = 0, moving at most one voxel.
+        let step = if g2 > 0.0 { -self.sd[v] / g2 } else { 0.0 };
+        let length = (step * step * g2).sqrt();
+        let scale = if length > 1.0 { step / length } else { step };
+        self.point(core::array::from_fn(|d| c[d] as f64 + scale * g[d]))
     }
 
     /// §5.1: Poisson-disk boundary constraints on the goal boundary, and for each an interior
