@@ -8,8 +8,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 use rbf_core::{Constraint, FitSettings, Model};
 use rbf_mesh::{
-    TriMesh, Volume, VoxelMethod, VoxelSettings, has_other_neighbour, signed_distance,
-    squared_distance_transform, voxelize,
+    TriMesh, Volume, VoxelMethod, VoxelSettings, classify_blocks, has_other_neighbour,
+    signed_distance, squared_distance_transform, voxelize,
 };
 
 use crate::{ConvertError, poisson_subset};
@@ -410,59 +410,30 @@ impl Goal {
             .for_each(|(p, o)| {
                 let _ = f.values(p, o);
             });
-        let results: Vec<(usize, Vec<bool>)> = (0..blocks[0] * blocks[1] * blocks[2])
-            .into_par_iter()
-            .map(|b| {
-                let bi = [
-                    b / (blocks[1] * blocks[2]),
-                    (b / blocks[2]) % blocks[1],
-                    b % blocks[2],
-                ];
-                let lo: [usize; 3] = core::array::from_fn(|d| bi[d] * s);
-                let hi: [usize; 3] = core::array::from_fn(|d| (lo[d] + s).min(self.shape[d]));
-                let signs = (0..8).map(|k| {
-                    let c = [bi[0] + (k & 1), bi[1] + ((k >> 1) & 1), bi[2] + (k >> 2)];
-                    coarse[(c[0] * cn[1] + c[1]) * cn[2] + c[2]] > 0.0
-                });
-                let positive = signs.filter(|&x| x).count();
-                let centre = core::array::from_fn(|d| (lo[d] + hi[d]) / 2);
-                let near = self.to_boundary[self.index(centre)] <= settings.shell + s as f64;
-                let count = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-                if !near && (positive == 0 || positive == 8) {
-                    return (b, vec![positive == 8; count]);
-                }
-                let mut points = Vec::with_capacity(count);
-                for i in lo[0]..hi[0] {
-                    for j in lo[1]..hi[1] {
-                        for k in lo[2]..hi[2] {
-                            points.push(self.point([i as f64, j as f64, k as f64]));
-                        }
-                    }
-                }
-                let mut values = vec![0.0; count];
-                let _ = f.values(&points, &mut values);
-                (b, values.into_iter().map(|v| v > 0.0).collect())
-            })
-            .collect();
-        let mut inside = vec![false; nx * ny * nz];
-        for (b, values) in results {
-            let bi = [
-                b / (blocks[1] * blocks[2]),
-                (b / blocks[2]) % blocks[1],
-                b % blocks[2],
-            ];
-            let lo: [usize; 3] = core::array::from_fn(|d| bi[d] * s);
-            let hi: [usize; 3] = core::array::from_fn(|d| (lo[d] + s).min(self.shape[d]));
-            let mut v = values.into_iter();
+        classify_blocks(self.shape, s, |bi, lo, hi| {
+            let signs = (0..8).map(|k| {
+                let c = [bi[0] + (k & 1), bi[1] + ((k >> 1) & 1), bi[2] + (k >> 2)];
+                coarse[(c[0] * cn[1] + c[1]) * cn[2] + c[2]] > 0.0
+            });
+            let positive = signs.filter(|&x| x).count();
+            let centre = core::array::from_fn(|d| (lo[d] + hi[d]) / 2);
+            let near = self.to_boundary[self.index(centre)] <= settings.shell + s as f64;
+            let count = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+            if !near && (positive == 0 || positive == 8) {
+                return vec![positive == 8; count];
+            }
+            let mut points = Vec::with_capacity(count);
             for i in lo[0]..hi[0] {
                 for j in lo[1]..hi[1] {
                     for k in lo[2]..hi[2] {
-                        inside[(i * ny + j) * nz + k] = v.next().unwrap_or(false);
+                        points.push(self.point([i as f64, j as f64, k as f64]));
                     }
                 }
             }
-        }
-        inside
+            let mut values = vec![0.0; count];
+            let _ = f.values(&points, &mut values);
+            values.into_iter().map(|v| v > 0.0).collect()
+        })
     }
 
     /// Equation (7)'s errors: (voxel, error in voxels, is a goal boundary voxel) for every goal

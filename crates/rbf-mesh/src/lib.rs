@@ -39,6 +39,6 @@ pub use polygonize::{
     BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, polygonize_continuation,
     polygonize_grid, surface_seeds,
 };
-pub use volume::{Volume, has_other_neighbour};
+pub use volume::{Volume, classify_blocks, has_other_neighbour};
 pub use voxelize::{VoxelMethod, VoxelSettings, voxel_grid, voxelize};
 pub use winding::{WindingTree, winding_numbers, winding_numbers_exact};

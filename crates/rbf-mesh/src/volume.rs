@@ -68,6 +68,58 @@ pub fn has_other_neighbour(
         || (k + 1 < nz && class(i, j, k + 1) != here)
 }
 
+/// Classifies every voxel of a grid of `shape`, block by block in parallel: `classify(index,
+/// lo, hi)` gets a block's index (in blocks) and its voxel range [lo, hi) and returns one class
+/// per voxel in x, y, z order (z fastest). The result is in C order over the whole grid.
+///
+/// ```
+/// let inside = rbf_mesh::classify_blocks([5, 3, 2], 2, |_, lo, hi| {
+///     let n = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+///     vec![lo[0] >= 2; n]
+/// });
+/// assert_eq!(inside.len(), 30);
+/// assert_eq!(inside.iter().filter(|&&b| b).count(), 18);
+/// ```
+pub fn classify_blocks(
+    shape: [usize; 3],
+    block: usize,
+    classify: impl Fn([usize; 3], [usize; 3], [usize; 3]) -> Vec<bool> + Sync,
+) -> Vec<bool> {
+    use rayon::prelude::*;
+    let b = block.max(1);
+    let [nx, ny, nz] = shape;
+    let blocks = [nx.div_ceil(b), ny.div_ceil(b), nz.div_ceil(b)];
+    let range = |i: usize| -> ([usize; 3], [usize; 3], [usize; 3]) {
+        let bi = [
+            i / (blocks[1] * blocks[2]),
+            (i / blocks[2]) % blocks[1],
+            i % blocks[2],
+        ];
+        let lo: [usize; 3] = core::array::from_fn(|d| bi[d] * b);
+        (bi, lo, core::array::from_fn(|d| (lo[d] + b).min(shape[d])))
+    };
+    let results: Vec<Vec<bool>> = (0..blocks[0] * blocks[1] * blocks[2])
+        .into_par_iter()
+        .map(|i| {
+            let (bi, lo, hi) = range(i);
+            classify(bi, lo, hi)
+        })
+        .collect();
+    let mut out = vec![false; nx * ny * nz];
+    for (i, values) in results.into_iter().enumerate() {
+        let (_, lo, hi) = range(i);
+        let mut v = values.into_iter();
+        for x in lo[0]..hi[0] {
+            for y in lo[1]..hi[1] {
+                for z in lo[2]..hi[2] {
+                    out[(x * ny + y) * nz + z] = v.next().unwrap_or(false);
+                }
+            }
+        }
+    }
+    out
+}
+
 impl Volume<f32> {
     /// The volume as a NumPy `.npy` file (version 1.0, little-endian `float32`, C order,
     /// shape `(nx, ny, nz)`), which `numpy.load` reads as an array indexed `[x][y][z]`.

@@ -247,90 +247,59 @@ impl WindingTree {
     /// and where the winding number at the block's centre is clearly 0 or 1 take that class
     /// whole; the rest are evaluated voxel by voxel.
     pub fn classify_grid(&self, origin: [f64; 3], h: f64, shape: [usize; 3]) -> Vec<bool> {
-        const B: usize = 4;
-        let [nx, ny, nz] = shape;
-        let blocks = [nx.div_ceil(B), ny.div_ceil(B), nz.div_ceil(B)];
-        // The voxel ranges [lo, hi) of block b.
-        let range = |b: usize| -> ([usize; 3], [usize; 3]) {
-            let bi = [
-                b / (blocks[1] * blocks[2]),
-                (b / blocks[2]) % blocks[1],
-                b % blocks[2],
-            ];
-            let lo: [usize; 3] = core::array::from_fn(|d| bi[d] * B);
-            (lo, core::array::from_fn(|d| (lo[d] + B).min(shape[d])))
-        };
-        let results: Vec<(usize, Vec<bool>)> = (0..blocks[0] * blocks[1] * blocks[2])
-            .into_par_iter()
-            .map(|b| {
-                let (lo, hi) = range(b);
-                let centre: [f64; 3] =
-                    core::array::from_fn(|d| origin[d] + h * 0.5 * ((lo[d] + hi[d] - 1) as f64));
-                let radius = 0.5
-                    * h
-                    * (((hi[0] - lo[0]).pow(2) + (hi[1] - lo[1]).pow(2) + (hi[2] - lo[2]).pow(2))
-                        as f64)
-                        .sqrt();
-                let count = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-                if let Some(inside) = self.clear_class(centre, radius) {
-                    return (b, vec![inside; count]);
-                }
-                // Near the mesh: the same test on sub-blocks of 2³, then voxel by voxel.
-                let mut out = vec![false; count];
-                let (sy, sz) = (hi[1] - lo[1], hi[2] - lo[2]);
-                for i0 in (lo[0]..hi[0]).step_by(2) {
-                    for j0 in (lo[1]..hi[1]).step_by(2) {
-                        for k0 in (lo[2]..hi[2]).step_by(2) {
-                            let (i1, j1, k1) = (
-                                (i0 + 2).min(hi[0]),
-                                (j0 + 2).min(hi[1]),
-                                (k0 + 2).min(hi[2]),
-                            );
-                            let c = [
-                                origin[0] + h * 0.5 * ((i0 + i1 - 1) as f64),
-                                origin[1] + h * 0.5 * ((j0 + j1 - 1) as f64),
-                                origin[2] + h * 0.5 * ((k0 + k1 - 1) as f64),
-                            ];
-                            let r = 0.5
-                                * h
-                                * (((i1 - i0).pow(2) + (j1 - j0).pow(2) + (k1 - k0).pow(2)) as f64)
-                                    .sqrt();
-                            let whole = self.clear_class(c, r);
-                            for i in i0..i1 {
-                                for j in j0..j1 {
-                                    for k in k0..k1 {
-                                        let at =
-                                            ((i - lo[0]) * sy + (j - lo[1])) * sz + (k - lo[2]);
-                                        out[at] = whole.unwrap_or_else(|| {
-                                            let p = [
-                                                origin[0] + h * i as f64,
-                                                origin[1] + h * j as f64,
-                                                origin[2] + h * k as f64,
-                                            ];
-                                            self.winding_number(p) > 0.5
-                                        });
-                                    }
+        crate::classify_blocks(shape, 4, |_, lo, hi| {
+            let centre: [f64; 3] =
+                core::array::from_fn(|d| origin[d] + h * 0.5 * ((lo[d] + hi[d] - 1) as f64));
+            let radius = 0.5
+                * h
+                * (((hi[0] - lo[0]).pow(2) + (hi[1] - lo[1]).pow(2) + (hi[2] - lo[2]).pow(2))
+                    as f64)
+                    .sqrt();
+            let count = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+            if let Some(inside) = self.clear_class(centre, radius) {
+                return vec![inside; count];
+            }
+            // Near the mesh: the same test on sub-blocks of 2³, then voxel by voxel.
+            let mut out = vec![false; count];
+            let (sy, sz) = (hi[1] - lo[1], hi[2] - lo[2]);
+            for i0 in (lo[0]..hi[0]).step_by(2) {
+                for j0 in (lo[1]..hi[1]).step_by(2) {
+                    for k0 in (lo[2]..hi[2]).step_by(2) {
+                        let (i1, j1, k1) = (
+                            (i0 + 2).min(hi[0]),
+                            (j0 + 2).min(hi[1]),
+                            (k0 + 2).min(hi[2]),
+                        );
+                        let c = [
+                            origin[0] + h * 0.5 * ((i0 + i1 - 1) as f64),
+                            origin[1] + h * 0.5 * ((j0 + j1 - 1) as f64),
+                            origin[2] + h * 0.5 * ((k0 + k1 - 1) as f64),
+                        ];
+                        let r = 0.5
+                            * h
+                            * (((i1 - i0).pow(2) + (j1 - j0).pow(2) + (k1 - k0).pow(2)) as f64)
+                                .sqrt();
+                        let whole = self.clear_class(c, r);
+                        for i in i0..i1 {
+                            for j in j0..j1 {
+                                for k in k0..k1 {
+                                    let at = ((i - lo[0]) * sy + (j - lo[1])) * sz + (k - lo[2]);
+                                    out[at] = whole.unwrap_or_else(|| {
+                                        let p = [
+                                            origin[0] + h * i as f64,
+                                            origin[1] + h * j as f64,
+                                            origin[2] + h * k as f64,
+                                        ];
+                                        self.winding_number(p) > 0.5
+                                    });
                                 }
                             }
                         }
                     }
                 }
-                (b, out)
-            })
-            .collect();
-        let mut inside = vec![false; nx * ny * nz];
-        for (b, values) in results {
-            let (lo, hi) = range(b);
-            let mut v = values.into_iter();
-            for i in lo[0]..hi[0] {
-                for j in lo[1]..hi[1] {
-                    for k in lo[2]..hi[2] {
-                        inside[(i * ny + j) * nz + k] = v.next().unwrap_or(false);
-                    }
-                }
             }
-        }
-        inside
+            out
+        })
     }
 }
 
