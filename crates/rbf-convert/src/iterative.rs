@@ -8,7 +8,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 use rbf_core::{Constraint, FitSettings, Model};
 use rbf_mesh::{
-    TriMesh, Volume, VoxelMethod, VoxelSettings, classify_blocks, has_other_neighbour,
+    TriMesh, Volume, VoxelMethod, VoxelSettings, WindingTree, classify_blocks, has_other_neighbour,
     signed_distance, squared_distance_transform, voxelize,
 };
 
@@ -46,6 +46,15 @@ pub struct IterativeSettings {
     pub error_fraction: f64,
     /// Regularization λ of every fit (paper 001, §6.3).
     pub lambda: f64,
+    /// Blocks of the shell whose corners agree in sign and stand farther from f = 0 than 1.5
+    /// half-diagonals of the block, by the first-order estimate |f| / |∇f| at every corner, are
+    /// filled without evaluating them voxel by voxel: every point of a block is within half a
+    /// diagonal of a corner (not in the paper, whose thick shell took most of its time). true.
+    pub gradient_skip: bool,
+    /// At most this fraction of the current constraint count is added in one iteration (not in
+    /// the paper, which adds every candidate that survives pruning: near the end that can
+    /// triple the count in one step). 0.3.
+    pub max_growth: f64,
 }
 
 impl Default for IterativeSettings {
@@ -65,6 +74,8 @@ impl Default for IterativeSettings {
             min_spacing: 1.0,
             error_fraction: 0.5,
             lambda: 0.0,
+            max_growth: 0.3,
+            gradient_skip: true,
         }
     }
 }
@@ -126,7 +137,19 @@ pub fn convert_iterative(
         },
     )
     .map_err(|e| ConvertError::Mesh(e.to_string()))?;
-    let goal = Goal::new(&density)?;
+    // The goal's inside is the class of each voxel's centre, the same test the current surface
+    // gets, so that the mesh itself would score zero; the densities give sub-voxel distances.
+    let centres = voxelize(
+        mesh,
+        &VoxelSettings {
+            resolution: settings.resolution,
+            margin: settings.margin,
+            supersampling: 1,
+            method: settings.voxel_method,
+        },
+    )
+    .map_err(|e| ConvertError::Mesh(e.to_string()))?;
+    let goal = Goal::new(&density, &centres, WindingTree::new(mesh))?;
     let fit_settings = FitSettings {
         lambda: settings.lambda,
         ..Default::default()
@@ -228,12 +251,26 @@ struct Goal {
     boundary: Vec<usize>,
     /// Distance from each voxel to the nearest goal boundary voxel, in voxels.
     to_boundary: Vec<f64>,
+    /// The mesh, for placing boundary constraints exactly on it.
+    mesh: WindingTree,
 }
 
 impl Goal {
-    fn new(density: &Volume<f32>) -> Result<Self, ConvertError> {
+    /// The goal from the mesh's densities, the class of each voxel centre (density 1 inside)
+    /// and the mesh.
+    fn new(
+        density: &Volume<f32>,
+        centres: &Volume<f32>,
+        mesh: WindingTree,
+    ) -> Result<Self, ConvertError> {
         let shape = density.shape;
-        let inside: Vec<bool> = density.data.iter().map(|&d| d >= 0.5).collect();
+        let inside: Vec<bool> = centres.data.iter().map(|&d| d >= 0.5).collect();
+        // Densities whose class agrees with the centres', for a signed distance of the same sign.
+        let mut density = density.clone();
+        for (d, &i) in density.data.iter_mut().zip(&inside) {
+            *d = if i { d.max(0.5) } else { d.min(0.499) };
+        }
+        let density = &density;
         if !inside.iter().any(|&b| b) {
             return Err(ConvertError::Mesh(
                 "no voxel is inside the mesh: it is flat or open, or the resolution is too coarse to hold its interior".into(),
@@ -251,6 +288,7 @@ impl Goal {
             sd,
             boundary,
             to_boundary,
+            mesh,
         })
     }
 
@@ -284,10 +322,15 @@ impl Goal {
         })
     }
 
-    /// The goal surface near boundary voxel v, with sub-voxel precision: the voxel centre moved
-    /// along ∇sd to where sd = 0 (at most one voxel).
+    /// The goal surface near boundary voxel v: the point of the mesh nearest to the voxel's
+    /// centre (within two voxels), else, with the sub-voxel precision of the densities as in the
+    /// paper, the centre moved along ∇sd to where sd = 0 (at most one voxel).
     fn surface_point(&self, v: usize) -> [f64; 3] {
         let c = self.coords(v);
+        let centre = self.point(c.map(|x| x as f64));
+        if let Some((q, _)) = self.mesh.closest_point(centre, 2.0 * self.h) {
+            return q;
+        }
         let g = self.gradient(c);
         let g2: f64 = g.iter().map(|x| x * x).sum();
         // One Newton step toward sd = 0, moving at most one voxel.
@@ -295,6 +338,18 @@ impl Goal {
         let length = (step * step * g2).sqrt();
         let scale = if length > 1.0 { step / length } else { step };
         self.point(core::array::from_fn(|d| c[d] as f64 + scale * g[d]))
+    }
+
+    /// The goal's signed distance at voxel v (centre p), positive inside: the distance to the
+    /// mesh itself, signed by the voxel's class (the paper's sd_goal from densities when the
+    /// mesh is farther than the volume is wide).
+    fn signed_distance(&self, v: usize, p: [f64; 3]) -> f64 {
+        let reach = self.h * self.shape.iter().sum::<usize>() as f64;
+        match self.mesh.closest_point(p, reach) {
+            Some((_, d)) if self.sd[v] >= 0.0 => d,
+            Some((_, d)) => -d,
+            None => self.sd[v] * self.h,
+        }
     }
 
     /// §5.1: Poisson-disk boundary constraints on the goal boundary, and for each an interior
@@ -324,8 +379,8 @@ impl Goal {
                 end
             };
             let e = self.index(end);
-            let value = self.sd[e] * self.h;
             let ev = end.map(|x| x as f64);
+            let value = self.signed_distance(e, self.point(ev));
             if value != 0.0 && grid.free(ev, settings.min_spacing) {
                 grid.add(ev);
                 let p = self.point(ev);
@@ -404,22 +459,31 @@ impl Goal {
             })
             .collect();
         let mut coarse = vec![0.0; coarse_points.len()];
+        let mut gradients = vec![[0.0; 3]; coarse_points.len()];
         coarse_points
             .par_chunks(256)
             .zip(coarse.par_chunks_mut(256))
-            .for_each(|(p, o)| {
-                let _ = f.values(p, o);
+            .zip(gradients.par_chunks_mut(256))
+            .for_each(|((p, o), g)| {
+                let _ = f.values_and_gradients(p, o, g);
             });
+        // How far, in model units, f must be from zero at every corner for a block to be skipped.
+        let reach = 1.5 * 0.5 * (3.0_f64).sqrt() * s as f64 * self.h;
         classify_blocks(self.shape, s, |bi, lo, hi| {
-            let signs = (0..8).map(|k| {
+            let corners = (0..8).map(|k| {
                 let c = [bi[0] + (k & 1), bi[1] + ((k >> 1) & 1), bi[2] + (k >> 2)];
-                coarse[(c[0] * cn[1] + c[1]) * cn[2] + c[2]] > 0.0
+                (c[0] * cn[1] + c[1]) * cn[2] + c[2]
             });
-            let positive = signs.filter(|&x| x).count();
+            let positive = corners.clone().filter(|&c| coarse[c] > 0.0).count();
+            let clear = settings.gradient_skip
+                && corners.clone().all(|c| {
+                    let g = gradients[c];
+                    coarse[c].abs() > reach * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt()
+                });
             let centre = core::array::from_fn(|d| (lo[d] + hi[d]) / 2);
             let near = self.to_boundary[self.index(centre)] <= settings.shell + s as f64;
             let count = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-            if !near && (positive == 0 || positive == 8) {
+            if (!near || clear) && (positive == 0 || positive == 8) {
                 return vec![positive == 8; count];
             }
             let mut points = Vec::with_capacity(count);
@@ -470,8 +534,12 @@ impl Goal {
             grid.add(self.to_voxels(c.position));
         }
         let mut added: Vec<([f64; 3], f64)> = Vec::new();
+        let growth = (settings.max_growth * constraints.len() as f64).max(1.0);
+        let limit = settings
+            .max_constraints
+            .min(constraints.len().saturating_add(growth as usize));
         for &&(v, error, from_goal) in &candidates {
-            if constraints.len() >= settings.max_constraints {
+            if constraints.len() >= limit {
                 break;
             }
             let at = self.coords(v).map(|x| x as f64);
@@ -482,11 +550,11 @@ impl Goal {
                 let p = self.surface_point(v);
                 Constraint::boundary(p)
             } else {
-                let value = self.sd[v] * self.h;
+                let p = self.point(at);
+                let value = self.signed_distance(v, p);
                 if value == 0.0 {
                     continue;
                 }
-                let p = self.point(at);
                 if value > 0.0 {
                     Constraint::interior(p, value)
                 } else {

@@ -19,6 +19,7 @@
 //! ```
 
 mod check;
+mod closest;
 mod distance;
 mod error;
 mod hash;

@@ -191,6 +191,29 @@ impl WindingTree {
 }
 
 impl WindingTree {
+    pub(crate) fn root(&self) -> Option<usize> {
+        (!self.nodes.is_empty()).then_some(0)
+    }
+
+    /// A node's bounding sphere.
+    pub(crate) fn bounds(&self, n: usize) -> ([f64; 3], f64) {
+        (self.nodes[n].centre, self.nodes[n].radius)
+    }
+
+    pub(crate) fn children(&self, n: usize) -> Option<(usize, usize)> {
+        self.nodes[n].children
+    }
+
+    /// The corners of a leaf's triangles.
+    pub(crate) fn leaf_triangles(&self, n: usize) -> impl Iterator<Item = [[f64; 3]; 3]> + '_ {
+        let node = &self.nodes[n];
+        self.order[node.start..node.end]
+            .iter()
+            .map(|&t| self.corners[t])
+    }
+}
+
+impl WindingTree {
     /// True when some triangle comes within `radius` of `centre` (tested on bounding spheres of
     /// the hierarchy and boxes of the triangles).
     pub fn any_triangle_near(&self, centre: [f64; 3], radius: f64) -> bool {

@@ -1,6 +1,7 @@
 //! Integration tests of rbf-mesh, in one binary.
 
 mod checks;
+mod closest;
 mod distance;
 mod formats;
 mod polygonize;
