@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget};
-use rbf_core::{Constraint, ConstraintFile, FitSettings, Model, NormalOffset, System};
+use rbf_core::{AnyModel, Constraint, ConstraintFile, FitSettings, Model, NormalOffset, System};
 use rbf_solve::{SolveOptions, Strategy};
 
 use crate::KernelArg;
@@ -28,11 +28,13 @@ Input formats:
 Examples:
   rbf fit points.txt -o model.json
   rbf fit curve.txt --dim 2 -o curve.json
-  rbf fit scan.json --lambda 1e-4 -o smooth.json";
+  rbf fit scan.json --lambda 1e-4 -o smooth.json
+  rbf fit bunny.json --lambda 1e-3 -o smoother.json   (re-solve a model's constraints)";
 
 #[derive(Args, Debug)]
 pub(crate) struct FitArgs {
-    /// Constraint file (JSON or text); `-` reads stdin.
+    /// Constraint file (JSON or text), or a model file whose constraints are solved again
+    /// (with its settings, unless overridden); `-` reads stdin.
     input: PathBuf,
     /// Model file to write (JSON).
     #[arg(short, long, value_name = "MODEL.json")]
@@ -83,7 +85,28 @@ pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
         settings.kernel = Some(k.into());
     }
     let json = text.trim_start().starts_with('{');
-    let (dim, file) = if json {
+    let model = json && text.contains("\"format\"");
+    let (dim, source_kind) = if model {
+        // A model file: re-solve its constraints, with its settings unless overridden.
+        let model = AnyModel::from_json(&text).map_err(|e| Failure::file(&source, &e))?;
+        let (dim, model_settings) = match &model {
+            AnyModel::Two(m) => (2, m.settings),
+            AnyModel::Three(m) => (3, m.settings),
+        };
+        if let Some(d) = args.dim
+            && usize::from(d) != dim
+        {
+            return Err(Failure::new(
+                USAGE,
+                format!("--dim {d} contradicts {source}, which is {dim}D"),
+            ));
+        }
+        settings = FitSettings {
+            kernel: settings.kernel.or(model_settings.kernel),
+            ..model_settings
+        };
+        (dim, Source::Model(model))
+    } else if json {
         let file = ConstraintFile::from_json(&text).map_err(|e| Failure::file(&source, &e))?;
         let dim = file.dimension().map_err(|e| Failure::file(&source, &e))?;
         if let Some(d) = args.dim
@@ -95,9 +118,9 @@ pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
             ));
         }
         settings = file.settings(settings);
-        (dim, Some(file))
+        (dim, Source::Constraints(file))
     } else {
-        (usize::from(args.dim.unwrap_or(3)), None)
+        (usize::from(args.dim.unwrap_or(3)), Source::Text)
     };
     if let Some(l) = args.lambda {
         settings.lambda = l;
@@ -119,7 +142,7 @@ pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
     let job = Job {
         source: &source,
         text: &text,
-        file: file.as_ref(),
+        input: &source_kind,
         settings,
         options,
         quiet,
@@ -131,10 +154,38 @@ pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
     }
 }
 
+/// Where the constraints come from.
+enum Source {
+    /// A text constraint file.
+    Text,
+    /// A JSON constraint file.
+    Constraints(ConstraintFile),
+    /// A model file, whose constraints are solved again.
+    Model(AnyModel),
+}
+
+/// A model's constraints in dimension D (the caller picked D from the model).
+fn model_constraints<const D: usize>(model: &AnyModel) -> Vec<Constraint<D>> {
+    fn cast<const A: usize, const D: usize>(c: &Constraint<A>) -> Constraint<D> {
+        Constraint {
+            kind: c.kind,
+            position: core::array::from_fn(|d| c.position[d]),
+            value: c.value,
+            normal: core::array::from_fn(|d| c.normal[d]),
+            offset: c.offset,
+            smoothing: c.smoothing,
+        }
+    }
+    match model {
+        AnyModel::Two(m) => m.constraints.iter().map(cast).collect(),
+        AnyModel::Three(m) => m.constraints.iter().map(cast).collect(),
+    }
+}
+
 struct Job<'a> {
     source: &'a str,
     text: &'a str,
-    file: Option<&'a ConstraintFile>,
+    input: &'a Source,
     settings: FitSettings,
     options: SolveOptions,
     quiet: bool,
@@ -143,11 +194,12 @@ struct Job<'a> {
 
 impl Job<'_> {
     fn run<const D: usize>(&self) -> Result<(), Failure> {
-        let constraints: Vec<Constraint<D>> = match self.file {
-            Some(f) => f
+        let constraints: Vec<Constraint<D>> = match self.input {
+            Source::Constraints(f) => f
                 .constraints()
                 .map_err(|e| Failure::file(self.source, &e))?,
-            None => rbf_core::parse_constraints(self.text)
+            Source::Model(m) => model_constraints(m),
+            Source::Text => rbf_core::parse_constraints(self.text)
                 .map_err(|e| Failure::new(BAD_INPUT, format!("{}: {e}", self.source)))?,
         };
         let start = Instant::now();

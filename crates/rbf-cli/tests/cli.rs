@@ -260,6 +260,51 @@ fn lambda_and_kernel_options_reach_the_model() {
 }
 
 #[test]
+fn a_model_is_solved_again_with_a_new_lambda() {
+    let dir = tempfile::tempdir().unwrap();
+    let (exact, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &["--kernel", "linear"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let smooth = dir.path().join("smooth.json");
+    let o = rbf(
+        &[
+            "fit",
+            exact.to_str().unwrap(),
+            "--lambda",
+            "0.05",
+            "-o",
+            smooth.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&smooth).unwrap();
+    // The model's own settings carry over (its kernel); λ is the new one.
+    assert!(
+        text.contains("\"kernel\": \"linear\"") && text.contains("\"lambda\": 0.05"),
+        "{text}"
+    );
+    let value = |m: &Path| -> f64 {
+        let o = rbf(&["eval", m.to_str().unwrap(), "-"], Some("0 0 0\n"));
+        String::from_utf8(o.stdout).unwrap().trim().parse().unwrap()
+    };
+    assert!((value(&exact) - 1.0).abs() < 1e-9);
+    assert!((value(&smooth) - 1.0).abs() > 1e-4);
+    // A model re-solved with its own settings is the same model.
+    let again = dir.path().join("again.json");
+    let o = rbf(
+        &[
+            "fit",
+            exact.to_str().unwrap(),
+            "-o",
+            again.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!((value(&again) - value(&exact)).abs() < 1e-12);
+}
+
+#[test]
 fn demo_runs_and_writes_models() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("demo");
