@@ -47,11 +47,13 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+mod bound;
 mod kernel;
 mod math;
 mod real;
 mod view;
 
+pub use bound::BallBound;
 pub use kernel::Kernel;
 pub use real::Real;
 pub use view::{InterpolantView, LengthMismatch};

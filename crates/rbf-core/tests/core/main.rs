@@ -1,5 +1,6 @@
 //! Integration tests of rbf-core, in one binary.
 
+mod bound;
 mod errors;
 mod figures;
 mod model_file;

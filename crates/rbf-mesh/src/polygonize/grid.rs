@@ -6,7 +6,6 @@ use rayon::prelude::*;
 use rbf_core::InterpolantView;
 
 use super::BlockSkip;
-use super::bound::one_sign_in_ball;
 use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
 
 /// Cells along each side of a block.
@@ -75,7 +74,7 @@ pub(crate) fn cells(
                 BlockSkip::Never => false,
                 BlockSkip::Proven => {
                     let centre = core::array::from_fn(|d| 0.5 * (a[d] + c[d]));
-                    one_sign_in_ball(f, centre, half_diagonal)
+                    f.ball_bound(&centre, half_diagonal).one_sign()
                 }
                 BlockSkip::Estimated => {
                     // Every point of the block is within half a diagonal of a corner.

@@ -6,7 +6,6 @@
 //! f < 0). Vertices are placed on the surface by root finding along lattice edges, normals are
 //! the normalized −∇f.
 
-mod bound;
 mod continuation;
 mod grid;
 mod lattice;
@@ -96,7 +95,7 @@ impl PolygonizeSettings {
     fn lattice(&self, f: &InterpolantView<'_, f64, 3>) -> Result<Lattice, MeshError> {
         let (lo, hi) = match self.bounds {
             Some(b) => b,
-            None => automatic_bounds(f, self.margin),
+            None => f.surface_box(self.margin),
         };
         let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
         if !(side > 0.0 && side.is_finite()) || lo.iter().chain(&hi).any(|v| !v.is_finite()) {
@@ -126,55 +125,6 @@ impl PolygonizeSettings {
             cells,
         })
     }
-}
-
-/// The centres' bounding box grown by `margin`, then by a quarter of its size at a time
-/// (at most eight times) while f is positive somewhere on a 16 × 16 sampling of its faces, and
-/// then by a tenth.
-fn automatic_bounds(f: &InterpolantView<'_, f64, 3>, margin: f64) -> ([f64; 3], [f64; 3]) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for c in f.centres() {
-        for d in 0..3 {
-            lo[d] = lo[d].min(c[d]);
-            hi[d] = hi[d].max(c[d]);
-        }
-    }
-    let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
-    let side = if side > 0.0 { side } else { 1.0 };
-    lo = lo.map(|v| v - margin * side);
-    hi = hi.map(|v| v + margin * side);
-    const N: usize = 16;
-    for _ in 0..8 {
-        let mut points = Vec::with_capacity(6 * N * N);
-        for axis in 0..3 {
-            for end in [lo[axis], hi[axis]] {
-                let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
-                for i in 0..N {
-                    for j in 0..N {
-                        let mut p = [0.0; 3];
-                        p[axis] = end;
-                        p[a] = lo[a] + (hi[a] - lo[a]) * i as f64 / (N - 1) as f64;
-                        p[b] = lo[b] + (hi[b] - lo[b]) * j as f64 / (N - 1) as f64;
-                        points.push(p);
-                    }
-                }
-            }
-        }
-        let mut values = vec![0.0; points.len()];
-        let _ = f.values(&points, &mut values);
-        let outside = values.iter().all(|&v| v <= 0.0);
-        // Grow by a quarter while the surface pokes out; once it does not, once more by a
-        // tenth, for bulges between the samples.
-        let by = if outside { 0.1 } else { 0.25 };
-        let grow: [f64; 3] = core::array::from_fn(|d| by * (hi[d] - lo[d]));
-        lo = core::array::from_fn(|d| lo[d] - grow[d]);
-        hi = core::array::from_fn(|d| hi[d] + grow[d]);
-        if outside {
-            break;
-        }
-    }
-    (lo, hi)
 }
 
 /// Polygonizes every component of f's zero set inside the box, sampling f coarse-to-fine:
