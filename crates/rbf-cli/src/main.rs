@@ -8,6 +8,8 @@ mod failure;
 mod fit;
 mod io;
 mod mesh;
+mod plot;
+mod render;
 mod voxelize;
 
 use std::path::PathBuf;
@@ -56,6 +58,12 @@ enum Command {
     /// Voxelize a mesh: densities or signed distances on a grid, as a NumPy array.
     #[command(after_help = voxelize::HELP)]
     Voxelize(voxelize::VoxelizeArgs),
+    /// Render models (sphere traced, with CSG, shadows, reflections) or a mesh to PNG.
+    #[command(after_help = render::HELP)]
+    Render(render::RenderArgs),
+    /// Plot a 2D model's curve and its constraints to PNG.
+    #[command(after_help = plot::HELP)]
+    Plot(plot::PlotArgs),
     /// Check a mesh: holes, non-manifold edges and vertices, orientation, components, genus.
     #[command(after_help = "Examples:\n  rbf check bunny.obj\n  rbf check scan.ply --json")]
     Check(check::CheckArgs),
@@ -113,6 +121,8 @@ fn main() -> ExitCode {
         Command::Convert(args) => convert::run(&args, cli.quiet),
         Command::Mesh(args) => mesh::run(&args, cli.quiet),
         Command::Voxelize(args) => voxelize::run(&args, cli.quiet),
+        Command::Render(args) => render::run(&args, cli.quiet),
+        Command::Plot(args) => plot::run(&args, cli.quiet),
         Command::Demo { output } => demo::run(&output, cli.quiet),
     };
     match result {

@@ -581,3 +581,126 @@ fn iterative_convert_reports_every_iteration() {
         stderr(&o)
     );
 }
+
+#[test]
+fn render_and_plot_write_pngs() {
+    let dir = tempfile::tempdir().unwrap();
+    let (model, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let png = dir.path().join("tet.png");
+    let m = model.to_str().unwrap();
+    let o = rbf(
+        &[
+            "render",
+            m,
+            "-o",
+            png.to_str().unwrap(),
+            "--width",
+            "48",
+            "--height",
+            "32",
+            "--shadows",
+            "--reflections",
+            "1",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    // Two models as one solid, and a mesh.
+    let o = rbf(
+        &[
+            "render",
+            m,
+            m,
+            "--subtract",
+            "-o",
+            png.to_str().unwrap(),
+            "--width",
+            "16",
+            "--height",
+            "16",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mesh = dir.path().join("tet.obj");
+    let o = rbf(
+        &[
+            "mesh",
+            m,
+            "-o",
+            mesh.to_str().unwrap(),
+            "--resolution",
+            "16",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = rbf(
+        &[
+            "render",
+            mesh.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+            "--smooth",
+            "--width",
+            "16",
+            "--height",
+            "16",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A 3D model is not plotted, a mesh is not mixed with models, a bad point is a usage error.
+    let o = rbf(&["plot", m, "-o", png.to_str().unwrap()], None);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("rbf render"), "{}", stderr(&o));
+    let o = rbf(
+        &[
+            "render",
+            m,
+            mesh.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let o = rbf(
+        &["render", m, "-o", png.to_str().unwrap(), "--eye", "1,2"],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    // A 2D model plots.
+    let curve = write(dir.path(), "c.txt", "1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n0 0 1\n");
+    let c2 = dir.path().join("c.json");
+    let o = rbf(
+        &[
+            "fit",
+            curve.to_str().unwrap(),
+            "--dim",
+            "2",
+            "-o",
+            c2.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = rbf(
+        &[
+            "plot",
+            c2.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+            "--colour-map",
+            "--width",
+            "64",
+            "--height",
+            "64",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+}

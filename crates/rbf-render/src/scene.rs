@@ -1,0 +1,471 @@
+//! A scene of solids over a ground plane, lit by directional lights, rendered by sphere
+//! tracing with Phong shading, hard shadows and mirror reflections.
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+use rbf_core::InterpolantView;
+
+use crate::RenderError;
+use crate::camera::{Camera, Ray};
+use crate::csg::Csg;
+use crate::image::{Image, check_size};
+use crate::tracer::{Lipschitz, TraceCounts, Tracer};
+use crate::vector::{Vec3, add, along, cross, dot, normalize, scale, sub};
+
+/// A solid with its looks.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    /// What it is.
+    pub shape: Csg,
+    /// Linear RGB in [0, 1].
+    pub colour: [f64; 3],
+    /// Fraction of light mirrored, in [0, 1].
+    pub reflectivity: f64,
+}
+
+impl Object {
+    /// A matte object of a colour from the palette, by index.
+    ///
+    /// ```
+    /// use rbf_render::{Csg, Object};
+    /// let o = Object::new(Csg::Model(0), 1);
+    /// assert_eq!(o.reflectivity, 0.0);
+    /// ```
+    pub fn new(shape: Csg, index: usize) -> Self {
+        const PALETTE: [[f64; 3]; 6] = [
+            [0.80, 0.36, 0.18],
+            [0.20, 0.45, 0.80],
+            [0.30, 0.70, 0.30],
+            [0.85, 0.70, 0.20],
+            [0.60, 0.30, 0.70],
+            [0.25, 0.70, 0.70],
+        ];
+        Self {
+            shape,
+            colour: PALETTE[index % PALETTE.len()],
+            reflectivity: 0.0,
+        }
+    }
+}
+
+/// A light infinitely far away.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    /// Toward the light (any length).
+    pub direction: [f64; 3],
+    /// Brightness (1 is full).
+    pub intensity: f64,
+}
+
+/// How to render.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Rays per pixel along each axis (anti-aliasing): 2 traces 4 rays a pixel.
+    pub samples: u32,
+    /// Trace toward each light for hard shadows.
+    pub shadows: bool,
+    /// Depth of mirror reflections (0: none).
+    pub reflections: u32,
+    /// A checkered floor under the scene.
+    pub ground: bool,
+    /// Lights; `None` puts one above and to the left of the camera.
+    pub lights: Option<Vec<Light>>,
+    /// Background at the top and at the horizon (linear RGB).
+    pub background: [[f64; 3]; 2],
+    /// The step's Lipschitz constant.
+    pub lipschitz: Lipschitz,
+    /// Cells along the longest side of each solid's box.
+    pub cells: usize,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            samples: 2,
+            shadows: true,
+            reflections: 0,
+            ground: true,
+            lights: None,
+            background: [[0.45, 0.60, 0.85], [0.92, 0.94, 0.97]],
+            lipschitz: Lipschitz::Auto,
+            cells: 32,
+        }
+    }
+}
+
+/// What a render did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    /// Rays traced (camera, shadow and reflection rays, per solid).
+    pub rays: u64,
+    /// Points where models were evaluated.
+    pub evaluations: u64,
+    /// Seconds preparing the solids (bounds per cell).
+    pub prepare_seconds: f64,
+    /// Seconds tracing and shading.
+    pub trace_seconds: f64,
+    /// Whether every solid was stepped by proved bounds.
+    pub guaranteed: bool,
+}
+
+/// What a ray hit.
+#[derive(Clone, Copy)]
+enum Hit {
+    Nothing,
+    Ground(f64),
+    Object(usize, f64),
+}
+
+struct Renderer<'s, 'm> {
+    tracers: Vec<Tracer<'s, 'm>>,
+    objects: &'s [Object],
+    settings: &'s RenderSettings,
+    lights: Vec<Light>,
+    ground: Option<(f64, f64)>,
+    /// Offset of secondary rays off a surface.
+    offset: f64,
+}
+
+/// Renders the objects, made of the models, as the camera sees them.
+///
+/// ```
+/// use rbf_core::{InterpolantView, Kernel};
+/// use rbf_render::{Camera, Csg, Object, RenderSettings, render};
+/// // f = 1 − r³: the unit sphere.
+/// let sphere = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+/// let camera = Camera::orbit([-1.0; 3], [1.0; 3], 30.0, 20.0, 64, 48);
+/// let settings = RenderSettings { samples: 1, ..Default::default() };
+/// let (image, stats) = render(&[sphere], &[Object::new(Csg::Model(0), 0)], &camera, &settings).unwrap();
+/// assert_eq!((image.width(), image.height()), (64, 48));
+/// assert!(stats.evaluations > 0);
+/// ```
+pub fn render(
+    models: &[InterpolantView<'_, f64, 3>],
+    objects: &[Object],
+    camera: &Camera,
+    settings: &RenderSettings,
+) -> Result<(Image, RenderStats), RenderError> {
+    check_size(camera.width, camera.height)?;
+    if objects.is_empty() {
+        return Err(RenderError::NoObjects);
+    }
+    for o in objects {
+        o.shape.validate(models.len())?;
+    }
+    if !(1..=16).contains(&settings.samples) {
+        return Err(RenderError::Setting(format!(
+            "samples must be 1 to 16 per axis, not {}",
+            settings.samples
+        )));
+    }
+    let start = Instant::now();
+    let tracers: Vec<Tracer<'_, '_>> = objects
+        .iter()
+        .map(|o| {
+            Tracer::new(
+                models,
+                &o.shape,
+                settings.cells.clamp(1, 256),
+                settings.lipschitz,
+            )
+        })
+        .collect();
+    let prepare_seconds = start.elapsed().as_secs_f64();
+    let guaranteed = tracers.iter().all(Tracer::guaranteed);
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for t in &tracers {
+        let (a, b) = t.bounds();
+        for d in 0..3 {
+            lo[d] = lo[d].min(a[d]);
+            hi[d] = hi[d].max(b[d]);
+        }
+    }
+    let size = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    let renderer = Renderer {
+        lights: settings
+            .lights
+            .clone()
+            .unwrap_or_else(|| default_lights(camera)),
+        ground: settings.ground.then_some((lo[1], size / 6.0)),
+        offset: 1e-4 * size,
+        tracers,
+        objects,
+        settings,
+    };
+    let start = Instant::now();
+    let s = settings.samples;
+    let rows: Vec<(Vec<[f32; 3]>, TraceCounts)> = (0..camera.height)
+        .into_par_iter()
+        .map(|y| {
+            let mut counts = TraceCounts::default();
+            let mut rays = Vec::with_capacity((camera.width * s * s) as usize);
+            for x in 0..camera.width {
+                for j in 0..s {
+                    for i in 0..s {
+                        rays.push(camera.ray(
+                            f64::from(x) + (f64::from(i) + 0.5) / f64::from(s),
+                            f64::from(y) + (f64::from(j) + 0.5) / f64::from(s),
+                        ));
+                    }
+                }
+            }
+            let colours = renderer.radiance(&rays, settings.reflections, &mut counts);
+            let per = (s * s) as usize;
+            let row = colours
+                .chunks(per)
+                .map(|c| {
+                    let mut sum = [0.0; 3];
+                    for v in c {
+                        for k in 0..3 {
+                            sum[k] += v[k];
+                        }
+                    }
+                    sum.map(|v| (v / per as f64) as f32)
+                })
+                .collect();
+            (row, counts)
+        })
+        .collect();
+    let mut stats = RenderStats {
+        prepare_seconds,
+        guaranteed,
+        ..Default::default()
+    };
+    let mut pixels = Vec::with_capacity((camera.width * camera.height) as usize);
+    for (row, counts) in rows {
+        pixels.extend(row);
+        stats.rays += counts.rays;
+        stats.evaluations += counts.evaluations;
+    }
+    stats.trace_seconds = start.elapsed().as_secs_f64();
+    Ok((
+        Image::from_pixels(camera.width, camera.height, pixels),
+        stats,
+    ))
+}
+
+/// The box of the cells, over all objects, that can hold surface (by the bounds of
+/// `settings.lipschitz`): a tight box around what [`render`] will show, for aiming a camera.
+///
+/// ```
+/// use rbf_core::{InterpolantView, Kernel};
+/// use rbf_render::{Csg, Object, RenderSettings, surface_bounds};
+/// let sphere = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+/// let (lo, hi) = surface_bounds(&[sphere], &[Object::new(Csg::Model(0), 0)],
+///     &RenderSettings::default()).unwrap();
+/// assert!(lo.iter().all(|&v| v < -1.0 && v > -1.3) && hi.iter().all(|&v| v > 1.0 && v < 1.3));
+/// ```
+pub fn surface_bounds(
+    models: &[InterpolantView<'_, f64, 3>],
+    objects: &[Object],
+    settings: &RenderSettings,
+) -> Result<([f64; 3], [f64; 3]), RenderError> {
+    if objects.is_empty() {
+        return Err(RenderError::NoObjects);
+    }
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for o in objects {
+        o.shape.validate(models.len())?;
+        let tracer = Tracer::new(
+            models,
+            &o.shape,
+            settings.cells.clamp(1, 256),
+            settings.lipschitz,
+        );
+        if let Some((a, b)) = tracer.occupied_bounds() {
+            for d in 0..3 {
+                lo[d] = lo[d].min(a[d]);
+                hi[d] = hi[d].max(b[d]);
+            }
+        }
+    }
+    if lo[0] > hi[0] {
+        return Err(RenderError::Setting(
+            "no object has a surface to show".into(),
+        ));
+    }
+    Ok((lo, hi))
+}
+
+/// Where each ray first meets the solid `shape` (distance along the ray), by the same sphere
+/// tracer as [`render`]: for picking points on a surface.
+///
+/// ```
+/// use rbf_core::{InterpolantView, Kernel};
+/// use rbf_render::{Csg, Ray, RenderSettings, first_hits};
+/// let sphere = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+/// let ray = Ray { origin: [0.0, 0.0, 5.0], direction: [0.0, 0.0, -1.0] };
+/// let hits = first_hits(&[sphere], &Csg::Model(0), &[ray], &RenderSettings::default()).unwrap();
+/// assert!((hits[0].unwrap() - 4.0).abs() < 1e-9);
+/// ```
+pub fn first_hits(
+    models: &[InterpolantView<'_, f64, 3>],
+    shape: &Csg,
+    rays: &[Ray],
+    settings: &RenderSettings,
+) -> Result<Vec<Option<f64>>, RenderError> {
+    shape.validate(models.len())?;
+    let tracer = Tracer::new(
+        models,
+        shape,
+        settings.cells.clamp(1, 256),
+        settings.lipschitz,
+    );
+    let limits = vec![f64::INFINITY; rays.len()];
+    Ok(tracer.trace(rays, &limits, &mut TraceCounts::default()))
+}
+
+/// A key light above and to the left of the camera.
+pub(crate) fn default_lights(camera: &Camera) -> Vec<Light> {
+    let forward = normalize(sub(camera.target, camera.eye));
+    let right = normalize(cross(forward, camera.up));
+    let up = cross(right, forward);
+    let direction = add(
+        add(scale(up, 1.0), scale(right, -0.6)),
+        scale(forward, -0.5),
+    );
+    vec![Light {
+        direction: normalize(direction),
+        intensity: 1.0,
+    }]
+}
+
+impl Renderer<'_, '_> {
+    /// The nearest hit of each ray: the solids and the ground.
+    fn nearest(&self, rays: &[Ray], counts: &mut TraceCounts) -> Vec<Hit> {
+        let mut hits = vec![Hit::Nothing; rays.len()];
+        let mut best = vec![f64::INFINITY; rays.len()];
+        if let Some((height, _)) = self.ground {
+            for (i, r) in rays.iter().enumerate() {
+                if r.direction[1] < 0.0 && r.origin[1] > height {
+                    let t = (height - r.origin[1]) / r.direction[1];
+                    hits[i] = Hit::Ground(t);
+                    best[i] = t;
+                }
+            }
+        }
+        for (k, tracer) in self.tracers.iter().enumerate() {
+            for (i, hit) in tracer.trace(rays, &best, counts).into_iter().enumerate() {
+                if let Some(t) = hit
+                    && t < best[i]
+                {
+                    best[i] = t;
+                    hits[i] = Hit::Object(k, t);
+                }
+            }
+        }
+        hits
+    }
+
+    /// Whether each ray meets a solid before `limit`.
+    fn blocked(&self, rays: &[Ray], counts: &mut TraceCounts) -> Vec<bool> {
+        let mut blocked = vec![false; rays.len()];
+        let limits = vec![f64::INFINITY; rays.len()];
+        for tracer in &self.tracers {
+            for (b, hit) in blocked.iter_mut().zip(tracer.trace(rays, &limits, counts)) {
+                *b |= hit.is_some();
+            }
+        }
+        blocked
+    }
+
+    /// The light arriving along each ray.
+    fn radiance(&self, rays: &[Ray], depth: u32, counts: &mut TraceCounts) -> Vec<[f64; 3]> {
+        let hits = self.nearest(rays, counts);
+        // Surface points: position, outward normal, colour, reflectivity.
+        let mut surfaces: Vec<(usize, Vec3, Vec3, [f64; 3], f64)> = Vec::new();
+        let mut out: Vec<[f64; 3]> = rays.iter().map(|r| self.sky(r)).collect();
+        for (i, (hit, ray)) in hits.iter().zip(rays).enumerate() {
+            match *hit {
+                Hit::Nothing => {}
+                Hit::Ground(t) => {
+                    let p = along(ray.origin, ray.direction, t);
+                    surfaces.push((i, p, [0.0, 1.0, 0.0], self.checker(p), 0.0));
+                }
+                Hit::Object(k, t) => {
+                    let p = along(ray.origin, ray.direction, t);
+                    let mut n = self.tracers[k].normal(p);
+                    if dot(n, ray.direction) > 0.0 {
+                        // Seen from inside (a cut-open solid): light the side we see.
+                        n = scale(n, -1.0);
+                    }
+                    let o = &self.objects[k];
+                    surfaces.push((i, p, n, o.colour, o.reflectivity));
+                }
+            }
+        }
+        // Shadows, light by light.
+        let mut lit = vec![vec![true; surfaces.len()]; self.lights.len()];
+        if self.settings.shadows {
+            for (l, light) in self.lights.iter().enumerate() {
+                let dir = normalize(light.direction);
+                let shadow_rays: Vec<Ray> = surfaces
+                    .iter()
+                    .map(|s| Ray {
+                        origin: along(s.1, s.2, self.offset),
+                        direction: dir,
+                    })
+                    .collect();
+                for (flag, b) in lit[l].iter_mut().zip(self.blocked(&shadow_rays, counts)) {
+                    *flag = !b;
+                }
+            }
+        }
+        for (k, s) in surfaces.iter().enumerate() {
+            let (i, _, n, colour, _) = *s;
+            let view = scale(rays[i].direction, -1.0);
+            let mut c = colour.map(|v| 0.15 * v);
+            for (l, light) in self.lights.iter().enumerate() {
+                if !lit[l][k] {
+                    continue;
+                }
+                let dir = normalize(light.direction);
+                let diffuse = dot(n, dir).max(0.0);
+                let mirror = sub(scale(n, 2.0 * dot(n, dir)), dir);
+                let specular = dot(mirror, view).max(0.0).powi(40) * 0.35;
+                for d in 0..3 {
+                    c[d] += light.intensity * (0.85 * diffuse * colour[d] + specular);
+                }
+            }
+            out[i] = c;
+        }
+        // Mirror reflections.
+        let mirrors: Vec<usize> = (0..surfaces.len())
+            .filter(|&k| surfaces[k].4 > 0.0)
+            .collect();
+        if depth > 0 && !mirrors.is_empty() {
+            let reflected: Vec<Ray> = mirrors
+                .iter()
+                .map(|&k| {
+                    let (i, p, n, _, _) = surfaces[k];
+                    let d = rays[i].direction;
+                    Ray {
+                        origin: along(p, n, self.offset),
+                        direction: normalize(sub(d, scale(n, 2.0 * dot(n, d)))),
+                    }
+                })
+                .collect();
+            let colours = self.radiance(&reflected, depth - 1, counts);
+            for (&k, c) in mirrors.iter().zip(colours) {
+                let (i, _, _, _, r) = surfaces[k];
+                for d in 0..3 {
+                    out[i][d] = (1.0 - r) * out[i][d] + r * c[d];
+                }
+            }
+        }
+        out
+    }
+
+    fn sky(&self, ray: &Ray) -> [f64; 3] {
+        let [top, horizon] = self.settings.background;
+        let t = ray.direction[1].clamp(0.0, 1.0);
+        core::array::from_fn(|d| horizon[d] + (top[d] - horizon[d]) * t)
+    }
+
+    fn checker(&self, p: Vec3) -> [f64; 3] {
+        let square = self.ground.map_or(1.0, |g| g.1);
+        let parity = ((p[0] / square).floor() + (p[2] / square).floor()) as i64 & 1;
+        if parity == 0 { [0.85; 3] } else { [0.65; 3] }
+    }
+}

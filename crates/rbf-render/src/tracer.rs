@@ -1,0 +1,632 @@
+//! Sphere tracing (Hart 1996) of one solid. Its box is cut into cells; each cell carries a
+//! Lipschitz constant of the solid over the cell (guaranteed from the kernel's derivatives and
+//! the weights, or the paper's sampled estimate) and whether the surface can be in it at all.
+//! A ray skips cells that cannot hold surface and, elsewhere, steps |F| / L: never farther than
+//! the surface can be, so no ray passes through it. Steps below a small length hand over to a
+//! bracketing root finder that puts the hit on the surface.
+
+use rayon::prelude::*;
+use rbf_core::{InterpolantView, Kernel};
+
+use crate::camera::Ray;
+use crate::csg::Csg;
+use crate::vector::{Vec3, along, dot, norm, sub};
+
+/// Which Lipschitz constant steps the rays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lipschitz {
+    /// Proved, when proof is affordable: [`Lipschitz::Guaranteed`] unless its bounds near the
+    /// surface are more than 20 times the estimated slopes (fitted models with thousands of
+    /// large, cancelling weights), then [`Lipschitz::Estimated`]. [`crate::RenderStats`] says
+    /// which was used.
+    Auto,
+    /// Proved from the kernel's derivatives and the weights: per cell for skipping empty space
+    /// (see [`rbf_core::InterpolantView::ball_bound`]) and, for r³, per point from the exact
+    /// gradient and Σ|wⱼ|·6r bounds on the Hessian. No ray can pass through the surface.
+    Guaranteed,
+    /// 1.5 times the largest |∇f| at each cell's corners and centre, per cell: tight and fast,
+    /// though a feature thinner than a cell can be stepped over.
+    Estimated,
+    /// Paper 000, §7.2: the largest |∇f| over this many samples of the box, for the whole box.
+    Sampled(usize),
+}
+
+/// Cells grow the bound's ball by this fraction, so a ray may step slightly past a cell's face.
+const BALL_SLACK: f64 = 0.02;
+/// Steps per ray before giving up (counted as a miss).
+const MAX_STEPS: usize = 4000;
+
+/// A solid prepared for tracing.
+pub(crate) struct Tracer<'s, 'm> {
+    views: &'s [InterpolantView<'m, f64, 3>],
+    csg: &'s Csg,
+    used: Vec<usize>,
+    lo: Vec3,
+    hi: Vec3,
+    n: [usize; 3],
+    cell: Vec3,
+    /// Per cell: the solid's Lipschitz constant, or 0 when the surface cannot be in the cell.
+    lipschitz: Vec<f64>,
+    /// Per model and cell: the model's Lipschitz constant (models with `local` only).
+    cell_lipschitz: Vec<Vec<f64>>,
+    /// Per model: whether its steps use cell bounds (kernels without a per-point bound).
+    local: Vec<bool>,
+    /// Per model: the sampled slope (sampled mode), or the global bound Σ|wⱼ| + |b| of φ = r.
+    sampled: Vec<f64>,
+    /// Per r³ model: its curvature bound.
+    spread: Vec<Option<Spread>>,
+    mode: Lipschitz,
+    /// Steps shorter than this end in root finding.
+    pub(crate) epsilon: f64,
+}
+
+/// Counts of work done.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraceCounts {
+    /// Rays traced.
+    pub rays: u64,
+    /// Points where the models were evaluated.
+    pub evaluations: u64,
+}
+
+impl<'s, 'm> Tracer<'s, 'm> {
+    /// Prepares `csg` over the models `views`, with about `cells` cells along the box's longest
+    /// side.
+    pub(crate) fn new(
+        views: &'s [InterpolantView<'m, f64, 3>],
+        csg: &'s Csg,
+        cells: usize,
+        mode: Lipschitz,
+    ) -> Self {
+        let used = csg.models();
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &m in &used {
+            let (a, b) = views[m].surface_box(0.05);
+            for d in 0..3 {
+                lo[d] = lo[d].min(a[d]);
+                hi[d] = hi[d].max(b[d]);
+            }
+        }
+        let longest = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+        let h = longest / cells.max(1) as f64;
+        let n: [usize; 3] =
+            core::array::from_fn(|d| ((hi[d] - lo[d]) / h).ceil().max(1.0) as usize);
+        let cell: Vec3 = core::array::from_fn(|d| (hi[d] - lo[d]) / n[d] as f64);
+        let radius = 0.5 * norm(cell) * (1.0 + BALL_SLACK);
+        let centre_of = |i: usize| -> Vec3 {
+            let c = [i / (n[1] * n[2]), (i / n[2]) % n[1], i % n[2]];
+            core::array::from_fn(|d| lo[d] + (c[d] as f64 + 0.5) * cell[d])
+        };
+        let cells_total = n[0] * n[1] * n[2];
+        // Estimated slopes per model and cell, and f at each cell's centre.
+        let mut estimated: Vec<Vec<f64>> = vec![Vec::new(); views.len()];
+        let mut centre_values: Vec<Vec<f64>> = vec![Vec::new(); views.len()];
+        for &m in &used {
+            let (e, v) = estimate_cells(&views[m], lo, cell, n);
+            estimated[m] = e;
+            centre_values[m] = v;
+        }
+        let interval_empty = |bounds: &[(f64, f64)]| {
+            let (a, b) = csg.interval(bounds);
+            a > 0.0 || b < 0.0
+        };
+        // Proved slopes per model and cell, and whether each cell is proved empty.
+        let proved: Vec<(bool, Vec<f64>)> =
+            if matches!(mode, Lipschitz::Guaranteed | Lipschitz::Auto) {
+                (0..cells_total)
+                    .into_par_iter()
+                    .map(|i| {
+                        let centre = centre_of(i);
+                        let mut bounds = vec![(0.0, 0.0); views.len()];
+                        let mut slopes = vec![0.0; views.len()];
+                        for &m in &used {
+                            let b = views[m].ball_bound(&centre, radius);
+                            bounds[m] = (b.value - b.change, b.value + b.change);
+                            slopes[m] = b.lipschitz;
+                        }
+                        (interval_empty(&bounds), slopes)
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+        let estimated_empty = |i: usize| {
+            let mut bounds = vec![(0.0, 0.0); views.len()];
+            for &m in &used {
+                let c = estimated[m][i] * radius;
+                bounds[m] = (centre_values[m][i] - c, centre_values[m][i] + c);
+            }
+            interval_empty(&bounds)
+        };
+        let mode = match mode {
+            Lipschitz::Auto => {
+                // How loose are the proofs where the surface may be?
+                let mut ratios: Vec<f64> = (0..cells_total)
+                    .filter(|&i| !estimated_empty(i))
+                    .flat_map(|i| {
+                        used.iter()
+                            .map(|&m| proved[i].1[m] / estimated[m][i].max(1e-300))
+                            .collect::<Vec<_>>()
+                    })
+                    .collect();
+                ratios.sort_by(f64::total_cmp);
+                let median = ratios.get(ratios.len() / 2).copied().unwrap_or(1.0);
+                if median > 20.0 {
+                    Lipschitz::Estimated
+                } else {
+                    Lipschitz::Guaranteed
+                }
+            }
+            m => m,
+        };
+        let spread: Vec<Option<Spread>> = views
+            .iter()
+            .enumerate()
+            .map(|(m, v)| {
+                (mode == Lipschitz::Guaranteed && used.contains(&m) && v.kernel() == Kernel::Cubic)
+                    .then(|| Spread::new(v))
+            })
+            .collect();
+        // Models whose steps stop at their cell's far side (their bound holds in the cell only).
+        let local: Vec<bool> = views
+            .iter()
+            .map(|v| match mode {
+                Lipschitz::Estimated => true,
+                Lipschitz::Guaranteed => v.kernel() == Kernel::ThinPlate,
+                _ => false,
+            })
+            .collect();
+        let sampled: Vec<f64> = views
+            .iter()
+            .enumerate()
+            .map(|(m, v)| match mode {
+                _ if !used.contains(&m) => 0.0,
+                Lipschitz::Sampled(count) => sampled_slope(v, lo, hi, count),
+                _ => {
+                    let w: f64 = v.weights().iter().map(|w| w.abs()).sum();
+                    w + norm(v.linear())
+                }
+            })
+            .collect();
+        let cell_lipschitz: Vec<Vec<f64>> = (0..views.len())
+            .map(|m| match mode {
+                Lipschitz::Estimated if used.contains(&m) => estimated[m].clone(),
+                Lipschitz::Guaranteed if local[m] => proved.iter().map(|c| c.1[m]).collect(),
+                _ => Vec::new(),
+            })
+            .collect();
+        let lipschitz: Vec<f64> = (0..cells_total)
+            .map(|i| {
+                let (empty, slope) = match mode {
+                    Lipschitz::Guaranteed => {
+                        (proved[i].0, proved[i].1.iter().copied().fold(0.0, f64::max))
+                    }
+                    Lipschitz::Sampled(_) => {
+                        let mut bounds = vec![(0.0, 0.0); views.len()];
+                        for &m in &used {
+                            let c = sampled[m] * radius;
+                            bounds[m] = (centre_values[m][i] - c, centre_values[m][i] + c);
+                        }
+                        (interval_empty(&bounds), 1.0)
+                    }
+                    _ => (estimated_empty(i), 1.0),
+                };
+                if empty { 0.0 } else { slope.max(1e-300) }
+            })
+            .collect();
+        Self {
+            views,
+            csg,
+            used,
+            lo,
+            hi,
+            n,
+            cell,
+            lipschitz,
+            cell_lipschitz,
+            local,
+            sampled,
+            spread,
+            mode,
+            epsilon: 1e-5 * longest,
+        }
+    }
+
+    /// The box the solid is traced in.
+    pub(crate) fn bounds(&self) -> (Vec3, Vec3) {
+        (self.lo, self.hi)
+    }
+
+    /// The box of the cells that can hold surface, if any.
+    pub(crate) fn occupied_bounds(&self) -> Option<(Vec3, Vec3)> {
+        let (mut lo, mut hi) = ([usize::MAX; 3], [0usize; 3]);
+        for (i, &l) in self.lipschitz.iter().enumerate() {
+            if l == 0.0 {
+                continue;
+            }
+            let c = [
+                i / (self.n[1] * self.n[2]),
+                (i / self.n[2]) % self.n[1],
+                i % self.n[2],
+            ];
+            for d in 0..3 {
+                lo[d] = lo[d].min(c[d]);
+                hi[d] = hi[d].max(c[d] + 1);
+            }
+        }
+        (lo[0] != usize::MAX).then(|| {
+            (
+                core::array::from_fn(|d| self.lo[d] + lo[d] as f64 * self.cell[d]),
+                core::array::from_fn(|d| self.lo[d] + hi[d] as f64 * self.cell[d]),
+            )
+        })
+    }
+
+    fn cell_of(&self, p: Vec3) -> usize {
+        let c: [usize; 3] = core::array::from_fn(|d| {
+            (((p[d] - self.lo[d]) / self.cell[d]).floor().max(0.0) as usize).min(self.n[d] - 1)
+        });
+        (c[0] * self.n[1] + c[1]) * self.n[2] + c[2]
+    }
+
+    /// Where the ray leaves the cell it is in at t.
+    fn cell_exit(&self, ray: &Ray, t: f64, index: usize) -> f64 {
+        let c = [
+            index / (self.n[1] * self.n[2]),
+            (index / self.n[2]) % self.n[1],
+            index % self.n[2],
+        ];
+        let mut exit = f64::INFINITY;
+        for d in 0..3 {
+            let dir = ray.direction[d];
+            if dir != 0.0 {
+                let face =
+                    self.lo[d] + (c[d] as f64 + if dir > 0.0 { 1.0 } else { 0.0 }) * self.cell[d];
+                exit = exit.min((face - ray.origin[d]) / dir);
+            }
+        }
+        exit.max(t)
+    }
+
+    /// The solid's outward unit normal at p, from the gradient of the model on whose surface
+    /// p lies.
+    pub(crate) fn normal(&self, p: Vec3) -> Vec3 {
+        let mut values = vec![0.0; self.views.len()];
+        for &m in &self.used {
+            values[m] = self.views[m].value(&p);
+        }
+        let (_, m, sign) = self.csg.active(&values);
+        let g = self.views[m].gradient(&p);
+        crate::vector::normalize(crate::vector::scale(g, -sign))
+    }
+
+    /// How far f_m can move from its value at a point within distance s, for the slope data
+    /// of that point.
+    fn change(&self, slope: &Slope, s: f64) -> f64 {
+        match *slope {
+            // |∇f(x)| ≤ |∇f(p)| + ‖∇²f‖ s with ‖∇²f‖ ≤ Σ|wⱼ| 6 (|p − cⱼ| + s) for r³, so
+            // |f(x) − f(p)| ≤ G s + 3 (g + W s) s².
+            Slope::Cubic {
+                gradient,
+                spread,
+                total,
+            } => gradient * s + 3.0 * (spread + total * s) * s * s,
+            Slope::Constant(l) => l * s,
+        }
+    }
+
+    /// The largest step from a point at which the solid's function cannot vanish, by bisection
+    /// on the interval bounds of every model, at most `most`.
+    fn safe_step(
+        &self,
+        values: &[f64],
+        slopes: &[Slope],
+        most: f64,
+        bounds: &mut [(f64, f64)],
+    ) -> f64 {
+        let clear = |s: f64, bounds: &mut [(f64, f64)]| {
+            for &m in &self.used {
+                let c = self.change(&slopes[m], s);
+                bounds[m] = (values[m] - c, values[m] + c);
+            }
+            let (a, b) = self.csg.interval(bounds);
+            a > 0.0 || b < 0.0
+        };
+        if clear(most, bounds) {
+            return most;
+        }
+        let (mut lo, mut hi) = (0.0, most);
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if clear(mid, bounds) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo < 1e-3 * lo {
+                break;
+            }
+        }
+        lo
+    }
+
+    /// The first hit of each ray before its `limit`, as the distance along it. Rays are traced
+    /// together: each round evaluates the models (value and gradient) at every unfinished ray's
+    /// point at once, then steps each ray as far as the bounds allow.
+    pub(crate) fn trace(
+        &self,
+        rays: &[Ray],
+        limits: &[f64],
+        counts: &mut TraceCounts,
+    ) -> Vec<Option<f64>> {
+        let mut hits = vec![None; rays.len()];
+        let mut t = vec![0.0; rays.len()];
+        let mut end = vec![0.0; rays.len()];
+        let mut steps = vec![0usize; rays.len()];
+        let mut active: Vec<usize> = Vec::with_capacity(rays.len());
+        for (i, ray) in rays.iter().enumerate() {
+            if let Some((a, b)) = clip(ray, self.lo, self.hi) {
+                t[i] = a.max(0.0);
+                end[i] = b.min(limits[i]);
+                if t[i] <= end[i] {
+                    active.push(i);
+                }
+            }
+        }
+        counts.rays += rays.len() as u64;
+        let models = self.views.len();
+        let mut points: Vec<Vec3> = Vec::with_capacity(rays.len());
+        let mut cells: Vec<usize> = Vec::with_capacity(rays.len());
+        let mut values: Vec<Vec<f64>> = vec![Vec::new(); models];
+        let mut gradients: Vec<Vec<Vec3>> = vec![Vec::new(); models];
+        let mut spreads: Vec<Vec<f64>> = vec![Vec::new(); models];
+        let mut here = vec![0.0; models];
+        let mut slopes = vec![Slope::Constant(0.0); models];
+        let mut bounds = vec![(0.0, 0.0); models];
+        let nudge = BALL_SLACK * 0.25 * self.cell_min();
+        while !active.is_empty() {
+            // Move every ray through cells without surface to its next point to evaluate.
+            points.clear();
+            cells.clear();
+            active.retain(|&i| {
+                let ray = &rays[i];
+                loop {
+                    if t[i] > end[i] || steps[i] >= MAX_STEPS {
+                        return false;
+                    }
+                    let p = along(ray.origin, ray.direction, t[i]);
+                    let c = self.cell_of(p);
+                    if self.lipschitz[c] == 0.0 {
+                        t[i] = self.cell_exit(ray, t[i], c) + nudge;
+                        steps[i] += 1;
+                        continue;
+                    }
+                    points.push(p);
+                    cells.push(c);
+                    return true;
+                }
+            });
+            if active.is_empty() {
+                break;
+            }
+            counts.evaluations += points.len() as u64;
+            for &m in &self.used {
+                values[m].resize(points.len(), 0.0);
+                if self.spread[m].is_none() {
+                    // Steps need no gradient here: values alone are about twice as fast.
+                    let _ = self.views[m].values(&points, &mut values[m]);
+                    continue;
+                }
+                gradients[m].resize(points.len(), [0.0; 3]);
+                let _ =
+                    self.views[m].values_and_gradients(&points, &mut values[m], &mut gradients[m]);
+                if let Some(spread) = &self.spread[m] {
+                    spreads[m].resize(points.len(), 0.0);
+                    let _ = spread.view().values(&points, &mut spreads[m]);
+                }
+            }
+            let mut k = 0;
+            active.retain(|&i| {
+                let j = k;
+                k += 1;
+                for &m in &self.used {
+                    here[m] = values[m][j];
+                    slopes[m] = match (&self.spread[m], self.mode) {
+                        (Some(spread), Lipschitz::Guaranteed) => Slope::Cubic {
+                            gradient: norm(gradients[m][j]),
+                            spread: spreads[m][j],
+                            total: spread.total,
+                        },
+                        _ => Slope::Constant(self.model_lipschitz(m, cells[j])),
+                    };
+                }
+                let (f, active_model, sign) = self.csg.active(&here);
+                let ray = &rays[i];
+                if f >= 0.0 {
+                    // On or inside the solid (the ray started inside, or landed on it exactly).
+                    hits[i] = Some(t[i]);
+                    return false;
+                }
+                // Bounds that hold only in the cell stop the step at its far side.
+                let cell_bound = self
+                    .used
+                    .iter()
+                    .any(|&m| matches!(slopes[m], Slope::Constant(_)) && self.local[m]);
+                let most = if cell_bound {
+                    self.cell_exit(ray, t[i], cells[j]) + nudge - t[i]
+                } else {
+                    end[i] - t[i] + nudge
+                };
+                let step = self.safe_step(&here, &slopes, most.max(0.0), &mut bounds);
+                if step < self.epsilon {
+                    hits[i] = Some(self.polish(ray, t[i], active_model, sign, f));
+                    return false;
+                }
+                t[i] += step;
+                steps[i] += 1;
+                true
+            });
+        }
+        hits
+    }
+
+    /// Newton steps along the ray from a point within reach of the surface of `model` (which
+    /// enters the solid with `sign`), each kept only while short and improving: the hit then
+    /// lies on the surface to rounding.
+    fn polish(&self, ray: &Ray, t: f64, model: usize, sign: f64, f: f64) -> f64 {
+        let (mut t, mut f) = (t, f);
+        for _ in 0..3 {
+            let (v, g) = self.views[model].value_and_gradient(&along(ray.origin, ray.direction, t));
+            let (v, rate) = (sign * v, sign * dot(g, ray.direction));
+            if v.abs() > f.abs() * 1.0001 && v != f {
+                break;
+            }
+            f = v;
+            let step = if rate != 0.0 { -f / rate } else { 0.0 };
+            if !(step.abs() < 16.0 * self.epsilon) || step == 0.0 {
+                break;
+            }
+            t += step;
+        }
+        t
+    }
+
+    /// The Lipschitz constant of model m for the sampled mode, or the proved one of a model
+    /// whose kernel has no per-point bound: per cell, or global for φ = r.
+    fn model_lipschitz(&self, m: usize, cell: usize) -> f64 {
+        if self.local[m] {
+            self.cell_lipschitz[m][cell]
+        } else {
+            self.sampled[m]
+        }
+    }
+
+    /// Whether rays are stepped by proved bounds.
+    pub(crate) fn guaranteed(&self) -> bool {
+        self.mode == Lipschitz::Guaranteed
+    }
+
+    fn cell_min(&self) -> f64 {
+        self.cell.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// What bounds a model's change around a point.
+#[derive(Clone, Copy, Debug)]
+enum Slope {
+    /// r³: |∇f| at the point, Σ|wⱼ| |p − cⱼ| and Σ|wⱼ|.
+    Cubic {
+        gradient: f64,
+        spread: f64,
+        total: f64,
+    },
+    /// A Lipschitz constant.
+    Constant(f64),
+}
+
+/// Σ|wⱼ| |x − cⱼ| as an interpolant with φ = r, and Σ|wⱼ|: the curvature bound of an r³ model.
+struct Spread {
+    centres: Vec<Vec3>,
+    weights: Vec<f64>,
+    total: f64,
+}
+
+impl Spread {
+    fn new(f: &InterpolantView<'_, f64, 3>) -> Self {
+        let weights: Vec<f64> = f.weights().iter().map(|w| w.abs()).collect();
+        Self {
+            centres: f.centres().to_vec(),
+            total: weights.iter().sum(),
+            weights,
+        }
+    }
+
+    fn view(&self) -> InterpolantView<'_, f64, 3> {
+        InterpolantView::new(Kernel::Linear, &self.centres, &self.weights, 0.0, [0.0; 3])
+            .unwrap_or_else(|_| unreachable!("as many weights as centres"))
+    }
+}
+
+/// The part of the ray inside the box, as distances along it.
+pub(crate) fn clip(ray: &Ray, lo: Vec3, hi: Vec3) -> Option<(f64, f64)> {
+    let (mut a, mut b) = (f64::NEG_INFINITY, f64::INFINITY);
+    for d in 0..3 {
+        let dir = ray.direction[d];
+        if dir == 0.0 {
+            if ray.origin[d] < lo[d] || ray.origin[d] > hi[d] {
+                return None;
+            }
+            continue;
+        }
+        let (t0, t1) = ((lo[d] - ray.origin[d]) / dir, (hi[d] - ray.origin[d]) / dir);
+        a = a.max(t0.min(t1));
+        b = b.min(t0.max(t1));
+    }
+    (a <= b && b >= 0.0).then_some((a, b))
+}
+
+/// Per cell: 1.5 times the largest |∇f| at its eight corners and its centre; and f at its
+/// centre.
+fn estimate_cells(
+    f: &InterpolantView<'_, f64, 3>,
+    lo: Vec3,
+    cell: Vec3,
+    n: [usize; 3],
+) -> (Vec<f64>, Vec<f64>) {
+    let m = [n[0] + 1, n[1] + 1, n[2] + 1];
+    let corners: Vec<Vec3> = (0..m[0] * m[1] * m[2])
+        .map(|i| {
+            let c = [i / (m[1] * m[2]), (i / m[2]) % m[1], i % m[2]];
+            core::array::from_fn(|d| lo[d] + c[d] as f64 * cell[d])
+        })
+        .collect();
+    let centres: Vec<Vec3> = (0..n[0] * n[1] * n[2])
+        .map(|i| {
+            let c = [i / (n[1] * n[2]), (i / n[2]) % n[1], i % n[2]];
+            core::array::from_fn(|d| lo[d] + (c[d] as f64 + 0.5) * cell[d])
+        })
+        .collect();
+    let evaluate = |points: &[Vec3]| -> (Vec<f64>, Vec<f64>) {
+        let mut values = vec![0.0; points.len()];
+        let mut gradients = vec![[0.0; 3]; points.len()];
+        points
+            .par_chunks(512)
+            .zip(values.par_chunks_mut(512))
+            .zip(gradients.par_chunks_mut(512))
+            .for_each(|((p, v), g)| {
+                let _ = f.values_and_gradients(p, v, g);
+            });
+        (values, gradients.into_iter().map(norm).collect())
+    };
+    let (_, corner_slopes) = evaluate(&corners);
+    let (centre_values, centre_slopes) = evaluate(&centres);
+    let slopes = (0..centres.len())
+        .map(|i| {
+            let c = [i / (n[1] * n[2]), (i / n[2]) % n[1], i % n[2]];
+            let mut most = centre_slopes[i];
+            for k in 0..8 {
+                let q = [c[0] + (k & 1), c[1] + ((k >> 1) & 1), c[2] + (k >> 2)];
+                most = most.max(corner_slopes[(q[0] * m[1] + q[1]) * m[2] + q[2]]);
+            }
+            1.5 * most
+        })
+        .collect();
+    (slopes, centre_values)
+}
+
+/// The paper's estimate: the largest |∇f| over `count` points spread through the box (a
+/// low-discrepancy sequence, so that the result does not depend on a random seed).
+fn sampled_slope(f: &InterpolantView<'_, f64, 3>, lo: Vec3, hi: Vec3, count: usize) -> f64 {
+    let size = sub(hi, lo);
+    (0..count.max(1))
+        .map(|i| {
+            // Additive recurrence with the plastic number's powers (R3 sequence).
+            let g = 1.220_744_084_605_759_5_f64;
+            let alpha = [1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g)];
+            let p: Vec3 = core::array::from_fn(|d| {
+                lo[d] + size[d] * (0.5 + alpha[d] * (i + 1) as f64).fract()
+            });
+            norm(f.gradient(&p))
+        })
+        .fold(0.0, f64::max)
+}

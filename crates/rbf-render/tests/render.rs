@@ -1,0 +1,290 @@
+//! Sphere tracing, CSG and the rasterizer against analytic answers and each other.
+
+use proptest::prelude::*;
+use rbf_core::{Constraint, FitSettings, InterpolantView, Kernel, fit};
+use rbf_render::{
+    Camera, Csg, Image, Lipschitz, MeshStyle, Object, PlotSettings, Ray, RenderSettings,
+    first_hits, plot_curve, render, render_mesh,
+};
+
+/// f = R³ − |x − c|³: the sphere of radius R around c.
+fn sphere(centre: &[[f64; 3]; 1], radius: f64) -> InterpolantView<'_, f64, 3> {
+    InterpolantView::new(Kernel::Cubic, centre, &[-1.0], radius.powi(3), [0.0; 3]).unwrap()
+}
+
+/// Black background, no floor, no shadows, one ray per pixel, white objects: lit pixels are
+/// exactly the covered ones.
+fn mask_settings() -> RenderSettings {
+    RenderSettings {
+        samples: 1,
+        shadows: false,
+        ground: false,
+        background: [[0.0; 3], [0.0; 3]],
+        lipschitz: Lipschitz::Guaranteed,
+        ..Default::default()
+    }
+}
+
+fn mask(image: &Image) -> Vec<bool> {
+    image
+        .pixels()
+        .iter()
+        .map(|p| p.iter().any(|&c| c > 0.0))
+        .collect()
+}
+
+fn front_camera(size: u32) -> Camera {
+    Camera {
+        eye: [0.0, 0.0, 5.0],
+        target: [0.0; 3],
+        up: [0.0, 1.0, 0.0],
+        fov_degrees: 30.0,
+        width: size,
+        height: size,
+    }
+}
+
+fn white(shape: Csg) -> Object {
+    Object {
+        shape,
+        colour: [1.0; 3],
+        reflectivity: 0.0,
+    }
+}
+
+#[test]
+fn a_sphere_covers_its_analytic_disc_to_a_pixel() {
+    let c = [[0.0; 3]];
+    let models = [sphere(&c, 1.0)];
+    let camera = front_camera(101);
+    let (image, stats) =
+        render(&models, &[white(Csg::Model(0))], &camera, &mask_settings()).unwrap();
+    assert!(stats.guaranteed);
+    let covered = mask(&image);
+    // The sphere subtends asin(1/5) from the eye; a pixel spans about fov/101.
+    let rim = (1.0_f64 / 5.0).asin();
+    let pixel = 30.0_f64.to_radians() / 101.0;
+    let mut wrong_far_from_rim = 0;
+    for y in 0..101 {
+        for x in 0..101 {
+            let ray = camera.ray(x as f64 + 0.5, y as f64 + 0.5);
+            let angle = (-ray.direction[2]).clamp(-1.0, 1.0).acos();
+            let inside = angle < rim;
+            if inside != covered[y * 101 + x] && (angle - rim).abs() > pixel {
+                wrong_far_from_rim += 1;
+            }
+        }
+    }
+    assert_eq!(wrong_far_from_rim, 0);
+    assert!(covered.iter().filter(|&&c| c).count() > 1000);
+}
+
+#[test]
+fn union_intersection_and_difference_follow_the_masks() {
+    let (ca, cb) = ([[0.0; 3]], [[1.0, 0.0, 0.0]]);
+    let models = [sphere(&ca, 1.0), sphere(&cb, 1.2)];
+    let camera = front_camera(81);
+    let settings = mask_settings();
+    let shot = |shape: Csg| {
+        mask(
+            &render(&models, &[white(shape)], &camera, &settings)
+                .unwrap()
+                .0,
+        )
+    };
+    let a = shot(Csg::Model(0));
+    let b = shot(Csg::Model(1));
+    let union = shot(Csg::Union(vec![Csg::Model(0), Csg::Model(1)]));
+    let both = shot(Csg::Intersection(vec![Csg::Model(0), Csg::Model(1)]));
+    let cut = shot(Csg::Difference(
+        Box::new(Csg::Model(0)),
+        Box::new(Csg::Model(1)),
+    ));
+    let count = |m: &[bool]| m.iter().filter(|&&x| x).count();
+    for i in 0..a.len() {
+        assert_eq!(union[i], a[i] || b[i], "union at pixel {i}");
+        assert!(
+            !both[i] || (a[i] && b[i]),
+            "intersection covers pixel {i} that an operand misses"
+        );
+        assert!(!cut[i] || a[i], "difference outside A at pixel {i}");
+        assert!(
+            !a[i] || b[i] || cut[i],
+            "difference lost pixel {i} that B does not touch"
+        );
+    }
+    // Where B holds A's whole depth, the difference removes A.
+    let removed = (0..a.len()).filter(|&i| a[i] && !cut[i]).count();
+    assert!(removed > 50, "{removed}");
+    assert!(count(&both) > 100 && count(&both) < count(&a));
+}
+
+/// A blob fitted through random points around an interior point.
+fn blob(points: &[[f64; 3]]) -> Vec<Constraint<3>> {
+    let mut c: Vec<Constraint<3>> = points.iter().map(|&p| Constraint::boundary(p)).collect();
+    c.push(Constraint::interior([0.0; 3], 1.0));
+    c
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(8))]
+    /// Every hit is on the surface, and f < 0 everywhere on the ray before it (no ray passes
+    /// through the surface); rays that miss never see f ≥ 0 inside the traced box.
+    #[test]
+    fn hits_lie_on_the_surface_and_no_ray_passes_through(
+        directions in proptest::collection::vec(proptest::array::uniform3(-1.0..1.0_f64), 6..12),
+        origin_angle in 0.0..std::f64::consts::TAU,
+    ) {
+        let points: Vec<[f64; 3]> = directions
+            .iter()
+            .map(|d| {
+                let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-3);
+                let r = 0.6 + 0.4 * (d[0] * 3.0).sin().abs();
+                [r * d[0] / n, r * d[1] / n, r * d[2] / n]
+            })
+            .collect();
+        let Ok(fitted) = fit(&blob(&points), &FitSettings::default()) else {
+            return Ok(()); // a degenerate draw (two points too close)
+        };
+        let f = fitted.interpolant.view();
+        let eye = [4.0 * origin_angle.cos(), 1.0, 4.0 * origin_angle.sin()];
+        let camera = Camera { eye, target: [0.0; 3], up: [0.0, 1.0, 0.0], fov_degrees: 40.0, width: 24, height: 24 };
+        let rays: Vec<Ray> = (0..24 * 24).map(|i| camera.ray((i % 24) as f64 + 0.5, (i / 24) as f64 + 0.5)).collect();
+        let settings = RenderSettings { lipschitz: Lipschitz::Guaranteed, ..Default::default() };
+        let hits = first_hits(&[f], &Csg::Model(0), &rays, &settings).unwrap();
+        prop_assert!(hits.iter().any(|h| h.is_some()));
+        for (ray, hit) in rays.iter().zip(&hits) {
+            let at = |t: f64| [0, 1, 2].map(|d| ray.origin[d] + t * ray.direction[d]);
+            let end = hit.unwrap_or(12.0);
+            if let Some(t) = hit {
+                let (v, g) = f.value_and_gradient(&at(*t));
+                let slope = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+                let distance = v.abs() / slope;
+                let facing = -(g[0] * ray.direction[0] + g[1] * ray.direction[1] + g[2] * ray.direction[2]) / slope;
+                // Within 1e-4 of the model's size at worst (grazing rays); to rounding where
+                // the ray meets the surface at less than 60° from its normal.
+                prop_assert!(distance < 2e-4, "hit {distance} from the surface");
+                prop_assert!(facing.abs() < 0.5 || distance < 1e-9, "hit {distance} from the surface, facing {facing}");
+            }
+            for k in 0..2000 {
+                let t = end * k as f64 / 2000.0;
+                prop_assert!(f.value(&at(t)) < 0.0 || (end - t) < 1e-4, "f ≥ 0 at t = {t} before the hit at {end}");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_mesh_rasterizer_and_the_tracer_agree_on_a_sphere() {
+    let c = [[0.0; 3]];
+    let models = [sphere(&c, 1.0)];
+    let camera = front_camera(81);
+    let traced = mask(
+        &render(&models, &[white(Csg::Model(0))], &camera, &mask_settings())
+            .unwrap()
+            .0,
+    );
+    let mesh = rbf_mesh::TriMesh::icosphere(5);
+    let image = render_mesh(
+        mesh.positions(),
+        mesh.triangles(),
+        &camera,
+        MeshStyle::Smooth,
+        [1.0; 3],
+        &mask_settings(),
+    )
+    .unwrap();
+    let drawn = mask(&image);
+    let differ = traced.iter().zip(&drawn).filter(|(a, b)| a != b).count();
+    let disc = traced.iter().filter(|&&x| x).count();
+    // The polyhedron's silhouette lies inside the sphere's by its sagitta: a thin ring.
+    assert!(differ * 50 < disc, "{differ} of {disc} pixels differ");
+}
+
+#[test]
+fn a_plot_draws_the_curve_through_its_boundary_constraints() {
+    let constraints = [
+        Constraint::boundary([1.0, 0.0]),
+        Constraint::boundary([0.0, 1.0]),
+        Constraint::boundary([-1.0, 0.0]),
+        Constraint::boundary([0.0, -1.0]),
+        Constraint::interior([0.0, 0.0], 1.0),
+    ];
+    let f = fit(&constraints, &FitSettings::default())
+        .unwrap()
+        .interpolant;
+    let settings = PlotSettings {
+        width: 200,
+        height: 200,
+        bounds: Some(([-2.0, -2.0], [2.0, 2.0])),
+        ..Default::default()
+    };
+    let image = plot_curve(&f.view(), &constraints, &settings).unwrap();
+    let dark = |x: f64, y: f64| {
+        let (px, py) = (
+            ((x + 2.0) / 4.0 * 200.0) as u32,
+            ((2.0 - y) / 4.0 * 200.0) as u32,
+        );
+        image.get(px.min(199), py.min(199)).iter().all(|&c| c < 0.3)
+    };
+    // On the curve, at the boundary constraints; far from it, white.
+    for c in &constraints[..4] {
+        assert!(dark(c.position[0], c.position[1]), "{:?}", c.position);
+    }
+    assert!(!dark(1.8, 1.8) && !dark(0.5, 0.2));
+    let with_map = plot_curve(
+        &f.view(),
+        &constraints,
+        &PlotSettings {
+            colour_map: true,
+            ..settings
+        },
+    )
+    .unwrap();
+    // Inside is warm: more red than blue.
+    let p = with_map.get(115, 90);
+    assert!(p[0] > p[2], "{p:?}");
+}
+
+#[test]
+fn bad_requests_are_errors() {
+    let c = [[0.0; 3]];
+    let models = [sphere(&c, 1.0)];
+    let mut camera = front_camera(8);
+    assert!(render(&models, &[white(Csg::Model(3))], &camera, &mask_settings()).is_err());
+    assert!(
+        render(
+            &models,
+            &[white(Csg::Union(vec![]))],
+            &camera,
+            &mask_settings()
+        )
+        .is_err()
+    );
+    assert!(render(&models, &[], &camera, &mask_settings()).is_err());
+    camera.width = 0;
+    assert!(render(&models, &[white(Csg::Model(0))], &camera, &mask_settings()).is_err());
+    let camera = front_camera(8);
+    assert!(
+        render_mesh(
+            &[[0.0; 3]],
+            &[[0, 1, 2]],
+            &camera,
+            MeshStyle::Flat,
+            [1.0; 3],
+            &mask_settings()
+        )
+        .is_err()
+    );
+    assert!(
+        render_mesh(
+            &[[f64::NAN; 3]; 3],
+            &[[0, 1, 2]],
+            &camera,
+            MeshStyle::Flat,
+            [1.0; 3],
+            &mask_settings()
+        )
+        .is_err()
+    );
+}
