@@ -1,36 +1,11 @@
 //! Meshing: polygonizing a 3000-point model, voxelizing, winding numbers, distance transforms.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use rbf_core::{Constraint, FitSettings, Model};
+use rbf_benches::torus_model;
 use rbf_mesh::{
     PolygonizeSettings, Resolution, VoxelMethod, VoxelSettings, polygonize_continuation,
     polygonize_grid, signed_distance, surface_seeds, voxelize,
 };
-
-fn torus_model(n: usize) -> Model<3> {
-    let golden = (5f64.sqrt() - 1.0) / 2.0;
-    let cs: Vec<Constraint<3>> = (0..n)
-        .map(|i| {
-            let u = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
-            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
-            let normal = [v.cos() * u.cos(), v.cos() * u.sin(), v.sin()];
-            let p = [
-                (1.0 + 0.35 * v.cos()) * u.cos(),
-                (1.0 + 0.35 * v.cos()) * u.sin(),
-                0.35 * v.sin(),
-            ];
-            Constraint::normal(p, normal)
-        })
-        .collect();
-    let settings = FitSettings::default();
-    let fit = rbf_solve::fit(&cs, &settings).expect("fit");
-    Model {
-        constraints: cs,
-        settings,
-        interpolant: fit.interpolant,
-        report: None,
-    }
-}
 
 fn mesh(c: &mut Criterion) {
     let mut group = c.benchmark_group("mesh");

@@ -1,7 +1,7 @@
 //! Shared workloads of the benchmarks, identical to those of `../shared/peers/peer_rbf.py`, so
 //! that criterion figures and peer figures describe the same work.
 
-use rbf_core::Constraint;
+use rbf_core::{Constraint, FitSettings, Model};
 
 /// A small deterministic generator (SplitMix64), so that benchmarks need no extra crate.
 pub struct Rng(u64);
@@ -91,3 +91,30 @@ pub fn torus_and_ball(m: usize) -> rbf_mesh::Volume<f32> {
     }
     v
 }
+
+/// A torus of `n` oriented points (3000 rows for n = 1500), fitted.
+pub fn torus_model(n: usize) -> Model<3> {
+    let golden = (5f64.sqrt() - 1.0) / 2.0;
+    let cs: Vec<Constraint<3>> = (0..n)
+        .map(|i| {
+            let u = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
+            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
+            let normal = [v.cos() * u.cos(), v.cos() * u.sin(), v.sin()];
+            let p = [
+                (1.0 + 0.35 * v.cos()) * u.cos(),
+                (1.0 + 0.35 * v.cos()) * u.sin(),
+                0.35 * v.sin(),
+            ];
+            Constraint::normal(p, normal)
+        })
+        .collect();
+    let settings = FitSettings::default();
+    let fit = rbf_solve::fit(&cs, &settings).expect("the torus fits");
+    Model {
+        constraints: cs,
+        settings,
+        interpolant: fit.interpolant,
+        report: None,
+    }
+}
+
