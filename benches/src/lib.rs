@@ -117,4 +117,3 @@ pub fn torus_model(n: usize) -> Model<3> {
         report: None,
     }
 }
-

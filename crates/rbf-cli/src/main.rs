@@ -1,5 +1,6 @@
 //! `rbf`: variational implicit surfaces from the shell.
 
+mod blend;
 mod check;
 mod convert;
 mod demo;
@@ -58,6 +59,9 @@ enum Command {
     /// Voxelize a mesh: densities or signed distances on a grid, as a NumPy array.
     #[command(after_help = voxelize::HELP)]
     Voxelize(voxelize::VoxelizeArgs),
+    /// Blend overlapping models into one smooth surface (constraint selection, paper 000 §6).
+    #[command(after_help = blend::HELP)]
+    Blend(blend::BlendArgs),
     /// Render models (sphere traced, with CSG, shadows, reflections) or a mesh to PNG.
     #[command(after_help = render::HELP)]
     Render(render::RenderArgs),
@@ -122,6 +126,7 @@ fn main() -> ExitCode {
         Command::Mesh(args) => mesh::run(&args, cli.quiet),
         Command::Voxelize(args) => voxelize::run(&args, cli.quiet),
         Command::Render(args) => render::run(&args, cli.quiet),
+        Command::Blend(args) => blend::run(&args, cli.quiet),
         Command::Plot(args) => plot::run(&args, cli.quiet),
         Command::Demo { output } => demo::run(&output, cli.quiet),
     };

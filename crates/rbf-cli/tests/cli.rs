@@ -704,3 +704,87 @@ fn render_and_plot_write_pngs() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+#[test]
+fn blend_reports_what_each_model_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = |name: &str, cx: f64| {
+        let text: String = [
+            [1., 0., 0.],
+            [-1., 0., 0.],
+            [0., 1., 0.],
+            [0., -1., 0.],
+            [0., 0., 1.],
+            [0., 0., -1.],
+        ]
+        .iter()
+        .map(|d: &[f64; 3]| {
+            format!(
+                "{} {} {} {} {} {}\n",
+                cx + d[0],
+                d[1],
+                d[2],
+                d[0],
+                d[1],
+                d[2]
+            )
+        })
+        .collect();
+        let input = write(dir.path(), &format!("{name}.txt"), &text);
+        let out = dir.path().join(format!("{name}.json"));
+        let o = rbf(
+            &["fit", input.to_str().unwrap(), "-o", out.to_str().unwrap()],
+            None,
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+        out
+    };
+    let (a, b) = (sphere("a", 0.0), sphere("b", 1.5));
+    let out = dir.path().join("ab.json");
+    let o = rbf(
+        &[
+            "blend",
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("kept 5 of 6"), "{}", stderr(&o));
+    let o = rbf(&["eval", out.to_str().unwrap(), "-"], Some("0.75 0 0\n"));
+    let v: f64 = String::from_utf8(o.stdout).unwrap().trim().parse().unwrap();
+    assert!(v > 0.0);
+    // A 2D model with a 3D one is a usage error; one model alone is too.
+    let curve = write(dir.path(), "c.txt", "1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n0 0 1\n");
+    let c2 = dir.path().join("c.json");
+    let o = rbf(
+        &[
+            "fit",
+            curve.to_str().unwrap(),
+            "--dim",
+            "2",
+            "-o",
+            c2.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = rbf(
+        &[
+            "blend",
+            a.to_str().unwrap(),
+            c2.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let o = rbf(
+        &["blend", a.to_str().unwrap(), "-o", out.to_str().unwrap()],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+}

@@ -1,6 +1,6 @@
 //! # rbf-convert
 //!
-//! Polygon meshes to variational implicit surfaces.
+//! Polygon meshes to variational implicit surfaces, and blends of implicit surfaces ([`blend`]).
 //!
 //! [`convert_normals`] is the method of Turk & O'Brien (2002, §4.3): a boundary constraint at
 //! each vertex and a normal constraint a small distance inside, against the vertex normal. For
@@ -22,10 +22,12 @@
 //! assert!(model.interpolant.value(&[1.0, 0.0, 0.0]).abs() < 1e-9); // through the vertices
 //! ```
 
+mod blend;
 mod iterative;
 mod normals;
 mod poisson;
 
+pub use blend::{BlendReport, blend};
 pub use iterative::{IterationReport, IterativeReport, IterativeSettings, convert_iterative};
 pub use normals::{ConvertError, NormalReport, NormalSettings, convert_normals, vertex_normals};
 pub use poisson::poisson_subset;

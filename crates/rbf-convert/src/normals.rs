@@ -56,6 +56,9 @@ pub enum ConvertError {
     /// The mesh could not be voxelized, or gave an empty volume.
     #[error("{0}")]
     Mesh(String),
+    /// Models that cannot be blended together.
+    #[error("{0}")]
+    Incompatible(String),
 }
 
 /// Area-weighted vertex normals from the faces (the mesh's own normals if it has them);
