@@ -7,10 +7,12 @@ mod demo;
 mod eval;
 mod failure;
 mod fit;
+mod floaters;
 mod io;
 mod mesh;
 mod plot;
 mod render;
+mod sculpt;
 mod voxelize;
 
 use std::path::PathBuf;
@@ -62,6 +64,12 @@ enum Command {
     /// Blend overlapping models into one smooth surface (constraint selection, paper 000 §6).
     #[command(after_help = blend::HELP)]
     Blend(blend::BlendArgs),
+    /// Replay a script of sculpting edits (paper 000 §5) and write the model.
+    #[command(after_help = sculpt::HELP)]
+    Sculpt(sculpt::SculptArgs),
+    /// Sample a model's surface evenly with floaters (positions and normals).
+    #[command(after_help = floaters::HELP)]
+    Floaters(floaters::FloatersArgs),
     /// Render models (sphere traced, with CSG, shadows, reflections) or a mesh to PNG.
     #[command(after_help = render::HELP)]
     Render(render::RenderArgs),
@@ -127,6 +135,8 @@ fn main() -> ExitCode {
         Command::Voxelize(args) => voxelize::run(&args, cli.quiet),
         Command::Render(args) => render::run(&args, cli.quiet),
         Command::Blend(args) => blend::run(&args, cli.quiet),
+        Command::Sculpt(args) => sculpt::run(&args, cli.quiet),
+        Command::Floaters(args) => floaters::run(&args, cli.quiet),
         Command::Plot(args) => plot::run(&args, cli.quiet),
         Command::Demo { output } => demo::run(&output, cli.quiet),
     };

@@ -175,7 +175,8 @@ pub fn render(
     let guaranteed = tracers.iter().all(Tracer::guaranteed);
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for t in &tracers {
-        let (a, b) = t.bounds();
+        // The floor goes under the surface itself, not under the traced box.
+        let (a, b) = t.occupied_bounds().unwrap_or_else(|| t.bounds());
         for d in 0..3 {
             lo[d] = lo[d].min(a[d]);
             hi[d] = hi[d].max(b[d]);

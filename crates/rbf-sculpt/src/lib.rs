@@ -1,0 +1,31 @@
+//! # rbf-sculpt
+//!
+//! Interactive modelling with interpolating implicit surfaces (Turk & O'Brien 2002, §5):
+//! a [`Session`] of constraints edited one at a time (add a boundary constraint where a ray
+//! meets the surface, move it, add and pull normal handles, delete, undo, redo), each edit
+//! re-solved by updating a factorization ([`IncrementalFit`]: O(n²) instead of a fresh O(n³)
+//! fit), and [`Floaters`] that keep an even sampling of the surface as it changes. Scripts of
+//! edits ([`Edit`], JSON) replay a session.
+//!
+//! ```
+//! use rbf_sculpt::Session;
+//! let mut s = Session::new().unwrap(); // the paper's start: a blob through a tetrahedron
+//! let top = s.add_boundary([0.0, 1.5, 0.0]).unwrap(); // pull the surface up to here
+//! assert!(s.interpolant().value(&[0.0, 1.5, 0.0]).abs() < 1e-9);
+//! let handle = s.add_normal(top).unwrap();
+//! s.move_normal(handle, [0.3, 1.6, 0.0]).unwrap(); // tilt the surface there
+//! s.delete(top).unwrap(); // the handle goes with it
+//! assert!(s.items()[handle].is_none());
+//! ```
+
+mod error;
+mod floaters;
+mod incremental;
+mod script;
+mod session;
+
+pub use error::SculptError;
+pub use floaters::{FloaterSettings, Floaters};
+pub use incremental::{IncrementalFit, Row};
+pub use script::{Edit, parse_script};
+pub use session::{Item, Session};

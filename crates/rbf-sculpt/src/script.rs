@@ -1,0 +1,93 @@
+//! Replayable sessions: a JSON list of edits.
+
+use serde::Deserialize;
+
+use crate::{Session, SculptError};
+
+/// One edit of a script, as JSON: `{"add_boundary": {"position": [x, y, z]}}`, `"undo"`, …
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Edit {
+    /// A boundary constraint at a point (the surface moves to pass through it).
+    AddBoundary {
+        /// Where.
+        position: [f64; 3],
+    },
+    /// A boundary constraint where a ray meets the surface (the surface does not move).
+    PickBoundary {
+        /// Ray origin.
+        origin: [f64; 3],
+        /// Ray direction.
+        direction: [f64; 3],
+    },
+    /// An interior constraint.
+    AddInterior {
+        /// Where.
+        position: [f64; 3],
+        /// f there (> 0).
+        value: f64,
+    },
+    /// An exterior constraint.
+    AddExterior {
+        /// Where.
+        position: [f64; 3],
+        /// f there (< 0).
+        value: f64,
+    },
+    /// Move a point constraint.
+    Move {
+        /// Item index.
+        item: usize,
+        /// New position.
+        to: [f64; 3],
+    },
+    /// A normal handle at a boundary constraint.
+    AddNormal {
+        /// The boundary item.
+        item: usize,
+    },
+    /// Move a normal handle's free end.
+    MoveNormal {
+        /// The normal item.
+        item: usize,
+        /// New tip.
+        to: [f64; 3],
+    },
+    /// Delete an item.
+    Delete {
+        /// Item index.
+        item: usize,
+    },
+    /// Undo the last edit.
+    Undo,
+    /// Redo the last undone edit.
+    Redo,
+}
+
+/// Parses a script: a JSON array of edits.
+///
+/// ```
+/// let edits = rbf_sculpt::parse_script(r#"[{"add_boundary": {"position": [0, 0, 1.5]}}, "undo"]"#).unwrap();
+/// assert_eq!(edits.len(), 2);
+/// ```
+pub fn parse_script(text: &str) -> Result<Vec<Edit>, String> {
+    serde_json::from_str(text).map_err(|e| format!("line {}, column {}: {e}", e.line(), e.column()))
+}
+
+impl Session {
+    /// Applies one edit.
+    pub fn apply(&mut self, edit: &Edit) -> Result<(), SculptError> {
+        match *edit {
+            Edit::AddBoundary { position } => self.add_boundary(position).map(drop),
+            Edit::PickBoundary { origin, direction } => self.pick_boundary(origin, direction).map(drop),
+            Edit::AddInterior { position, value } => self.add_interior(position, value).map(drop),
+            Edit::AddExterior { position, value } => self.add_exterior(position, value).map(drop),
+            Edit::Move { item, to } => self.move_item(item, to),
+            Edit::AddNormal { item } => self.add_normal(item).map(drop),
+            Edit::MoveNormal { item, to } => self.move_normal(item, to),
+            Edit::Delete { item } => self.delete(item),
+            Edit::Undo => self.undo(),
+            Edit::Redo => self.redo(),
+        }
+    }
+}
