@@ -48,13 +48,23 @@ pub(crate) fn run(args: &FloatersArgs, quiet: bool) -> Result<(), Failure> {
     }
     let diagonal = (0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt();
     if seeds.is_empty() || !(diagonal > 0.0) {
-        return Err(Failure::new(NUMERICAL, "the model has no surface to put floaters on"));
+        return Err(Failure::new(
+            NUMERICAL,
+            "the model has no surface to put floaters on",
+        ));
     }
     // A first spacing from the area of the box's sphere, then tuned to the count.
     let area = std::f64::consts::PI * diagonal * diagonal;
     let hexagon = 3.0_f64.sqrt() / 2.0;
     let mut spacing = (area / (args.count as f64 * hexagon)).sqrt();
-    let mut floaters = Floaters::new(&f, &seeds, FloaterSettings { spacing, ..FloaterSettings::for_size(diagonal) });
+    let mut floaters = Floaters::new(
+        &f,
+        &seeds,
+        FloaterSettings {
+            spacing,
+            ..FloaterSettings::for_size(diagonal)
+        },
+    );
     for _ in 0..4 {
         floaters.set_spacing(spacing);
         floaters.settle(&f, 120);
@@ -65,7 +75,11 @@ pub(crate) fn run(args: &FloatersArgs, quiet: bool) -> Result<(), Failure> {
     }
     let mut text = String::new();
     for (p, n) in floaters.points().iter().zip(floaters.normals(&f)) {
-        let _ = writeln!(text, "{} {} {} {} {} {}", p[0], p[1], p[2], n[0], n[1], n[2]);
+        let _ = writeln!(
+            text,
+            "{} {} {} {} {} {}",
+            p[0], p[1], p[2], n[0], n[1], n[2]
+        );
     }
     write_atomically(&args.output, text.as_bytes())?;
     if !quiet {

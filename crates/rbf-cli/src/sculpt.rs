@@ -57,11 +57,21 @@ pub(crate) fn run(args: &SculptArgs, quiet: bool) -> Result<(), Failure> {
     for (k, edit) in edits.iter().enumerate() {
         let t = Instant::now();
         session.apply(edit).map_err(|e| {
-            Failure::new(BAD_INPUT, format!("{source}: edit {} ({edit:?}): {e}", k + 1))
+            Failure::new(
+                BAD_INPUT,
+                format!("{source}: edit {} ({edit:?}): {e}", k + 1),
+            )
         })?;
         solve_seconds += t.elapsed().as_secs_f64();
         if let Some(dir) = &args.frames {
-            let camera = Camera::orbit([-2.0; 3], [2.0; 3], 30.0, 25.0, args.frame_size, args.frame_size);
+            let camera = Camera::orbit(
+                [-2.0; 3],
+                [2.0; 3],
+                30.0,
+                25.0,
+                args.frame_size,
+                args.frame_size,
+            );
             let settings = RenderSettings {
                 shadows: true,
                 samples: 1,
@@ -70,7 +80,9 @@ pub(crate) fn run(args: &SculptArgs, quiet: bool) -> Result<(), Failure> {
             let view = [session.interpolant().view()];
             let (image, _) = render(&view, &[Object::new(Csg::Model(0), 0)], &camera, &settings)
                 .map_err(|e| Failure::new(BAD_INPUT, e.to_string()))?;
-            let png = image.to_png().map_err(|e| Failure::new(BAD_INPUT, e.to_string()))?;
+            let png = image
+                .to_png()
+                .map_err(|e| Failure::new(BAD_INPUT, e.to_string()))?;
             write_atomically(&dir.join(format!("frame-{:03}.png", k + 1)), &png)?;
         }
     }

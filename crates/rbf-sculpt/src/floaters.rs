@@ -60,7 +60,11 @@ fn ideal_energy() -> f64 {
 
 impl Floaters {
     /// Floaters starting at `seeds` moved onto the surface.
-    pub fn new(f: &InterpolantView<'_, f64, 3>, seeds: &[[f64; 3]], settings: FloaterSettings) -> Self {
+    pub fn new(
+        f: &InterpolantView<'_, f64, 3>,
+        seeds: &[[f64; 3]],
+        settings: FloaterSettings,
+    ) -> Self {
         let mut floaters = Self {
             points: seeds.to_vec(),
             settings,
@@ -132,7 +136,10 @@ impl Floaters {
                     break;
                 }
             }
-            let moved = (0..3).map(|d| (p[d] - start[d]).powi(2)).sum::<f64>().sqrt();
+            let moved = (0..3)
+                .map(|d| (p[d] - start[d]).powi(2))
+                .sum::<f64>()
+                .sqrt();
             let v = f.value(p);
             let g = f.gradient(p);
             let g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
@@ -211,15 +218,16 @@ impl Floaters {
                 let neighbour_dead = (-1..=1).any(|dx| {
                     (-1..=1).any(|dy| {
                         (-1..=1).any(|dz| {
-                            grid.get(&[k[0] + dx, k[1] + dy, k[2] + dz]).is_some_and(|l| {
-                                l.iter().any(|&j| {
-                                    dead[j]
-                                        && (0..3)
-                                            .map(|d| (p[d] - self.points[j][d]).powi(2))
-                                            .sum::<f64>()
-                                            < 4.0 * sigma * sigma
+                            grid.get(&[k[0] + dx, k[1] + dy, k[2] + dz])
+                                .is_some_and(|l| {
+                                    l.iter().any(|&j| {
+                                        dead[j]
+                                            && (0..3)
+                                                .map(|d| (p[d] - self.points[j][d]).powi(2))
+                                                .sum::<f64>()
+                                                < 4.0 * sigma * sigma
+                                    })
                                 })
-                            })
                         })
                     })
                 });

@@ -6,9 +6,13 @@
 //! factor grows by one row (a bordered update, O(n²)); removing a row deletes one and restores
 //! the triangle with Givens rotations (O(n²)). Changing a pivot refactors (O(n³/3)).
 
+use rayon::prelude::*;
 use rbf_core::{Interpolant, Kernel};
 
 use crate::SculptError;
+
+/// Rows per block of the triangular solves.
+const BLOCK: usize = 256;
 
 /// One row of the system: f(position) = value.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -212,11 +216,7 @@ impl<const D: usize> IncrementalFit<D> {
             })
             .collect();
         let diagonal = self.diagonal(id, &lambda, &pa, &q);
-        // Solve L l = column.
-        for k in 0..l.len() {
-            let row = &self.factor[k];
-            l[k] = (l[k] - dot(&row[..k], &l[..k])) / row[k];
-        }
+        self.forward_solve(&mut l);
         let rest = diagonal - dot(&l, &l);
         if !(rest > 1e-13 * diagonal.abs().max(1e-300)) {
             return Err(SculptError::Singular(
@@ -231,6 +231,57 @@ impl<const D: usize> IncrementalFit<D> {
         self.free.push((id, lambda));
         self.to_pivots.push(pa);
         Ok(())
+    }
+
+    /// Solves L x = b in place, in blocks of rows: the part of each block's rows left of the
+    /// block is a matrix–vector product, done in parallel; the block's triangle in turn.
+    fn forward_solve(&self, x: &mut [f64]) {
+        let n = x.len();
+        let mut k0 = 0;
+        while k0 < n {
+            let k1 = (k0 + BLOCK).min(n);
+            let (done, block) = x.split_at_mut(k0);
+            let done: &[f64] = done;
+            block[..k1 - k0]
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(i, v)| *v -= dot(&self.factor[k0 + i][..k0], done));
+            for i in k0..k1 {
+                let row = &self.factor[i];
+                x[i] = (x[i] - dot(&row[k0..i], &x[k0..i])) / row[i];
+            }
+            k0 = k1;
+        }
+    }
+
+    /// Solves Lᵀ x = b in place, in blocks of rows from the bottom: each block's triangle in
+    /// turn, then its rows' effect on the unknowns to their left, in parallel column chunks.
+    fn back_solve(&self, x: &mut [f64]) {
+        let n = x.len();
+        let mut k1 = n;
+        while k1 > 0 {
+            let k0 = k1.saturating_sub(BLOCK);
+            for k in (k0..k1).rev() {
+                let row = &self.factor[k];
+                x[k] /= row[k];
+                let v = x[k];
+                for j in k0..k {
+                    x[j] -= row[j] * v;
+                }
+            }
+            let (left, block) = x.split_at_mut(k0);
+            let block: &[f64] = &block[..k1 - k0];
+            left.par_chunks_mut(512).enumerate().for_each(|(c, chunk)| {
+                let a = c * 512;
+                for (k, &v) in (k0..k1).zip(block) {
+                    let row = &self.factor[k][a..a + chunk.len()];
+                    for (y, l) in chunk.iter_mut().zip(row) {
+                        *y -= l * v;
+                    }
+                }
+            });
+            k1 = k0;
+        }
     }
 
     /// Deletes row and column k of M from the factor: Givens rotations on neighbouring
@@ -261,7 +312,9 @@ impl<const D: usize> IncrementalFit<D> {
     /// Chooses pivots (spread out: each farthest from the span of the previous) and factors
     /// every other row.
     fn refactor(&mut self) -> Result<(), SculptError> {
-        let live: Vec<usize> = (0..self.rows.len()).filter(|&i| self.rows[i].is_some()).collect();
+        let live: Vec<usize> = (0..self.rows.len())
+            .filter(|&i| self.rows[i].is_some())
+            .collect();
         if live.len() < D + 1 {
             return Err(SculptError::Singular(format!(
                 "{} points cannot hold a {D}D linear polynomial: keep at least {}",
@@ -293,14 +346,18 @@ impl<const D: usize> IncrementalFit<D> {
                 row
             })
             .collect();
-        let scale = b.iter().flat_map(|r| r[..=D].iter()).fold(0.0_f64, |m, v| m.max(v.abs()));
+        let scale = b
+            .iter()
+            .flat_map(|r| r[..=D].iter())
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
         for c in 0..=D {
             let p = (c..=D)
                 .max_by(|&x, &y| b[x][c].abs().total_cmp(&b[y][c].abs()))
                 .unwrap_or(c);
             if !(b[p][c].abs() > 1e-12 * scale) {
                 return Err(SculptError::Singular(
-                    "every point lies on one plane (or line): the linear part is undetermined".into(),
+                    "every point lies on one plane (or line): the linear part is undetermined"
+                        .into(),
                 ));
             }
             b.swap(c, p);
@@ -311,7 +368,9 @@ impl<const D: usize> IncrementalFit<D> {
                     let m = b[r][c];
                     if m != 0.0 {
                         let pivot_row = b[c].clone();
-                        b[r].iter_mut().zip(pivot_row).for_each(|(v, p)| *v -= m * p);
+                        b[r].iter_mut()
+                            .zip(pivot_row)
+                            .for_each(|(v, p)| *v -= m * p);
                     }
                 }
             }
@@ -365,17 +424,9 @@ impl<const D: usize> IncrementalFit<D> {
     /// Solves for the weights and the linear polynomial: the current interpolant, its centres in
     /// the order of the rows' ids.
     pub fn interpolant(&self) -> Result<Interpolant<f64, D>, SculptError> {
-        let n = self.free.len();
         // M u = σ Zᵀ h: L y = σ Zᵀ h is kept in `forward`; back substitution gives u.
         let mut u = self.forward.clone();
-        for k in (0..n).rev() {
-            u[k] /= self.factor[k][k];
-            let x = u[k];
-            let row = &self.factor[k];
-            for j in 0..k {
-                u[j] -= row[j] * x;
-            }
-        }
+        self.back_solve(&mut u);
         // Weights: u on the free rows, −Σ λ u on the pivots.
         let mut centres: Vec<[f64; D]> = Vec::with_capacity(self.len());
         let mut weights: Vec<f64> = Vec::with_capacity(self.len());

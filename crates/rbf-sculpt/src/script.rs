@@ -2,7 +2,7 @@
 
 use serde::Deserialize;
 
-use crate::{Session, SculptError};
+use crate::{SculptError, Session};
 
 /// One edit of a script, as JSON: `{"add_boundary": {"position": [x, y, z]}}`, `"undo"`, …
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -79,7 +79,9 @@ impl Session {
     pub fn apply(&mut self, edit: &Edit) -> Result<(), SculptError> {
         match *edit {
             Edit::AddBoundary { position } => self.add_boundary(position).map(drop),
-            Edit::PickBoundary { origin, direction } => self.pick_boundary(origin, direction).map(drop),
+            Edit::PickBoundary { origin, direction } => {
+                self.pick_boundary(origin, direction).map(drop)
+            }
             Edit::AddInterior { position, value } => self.add_interior(position, value).map(drop),
             Edit::AddExterior { position, value } => self.add_exterior(position, value).map(drop),
             Edit::Move { item, to } => self.move_item(item, to),

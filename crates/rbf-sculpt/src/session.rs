@@ -31,9 +31,18 @@ pub enum Item {
 impl Item {
     fn row(&self) -> Row<3> {
         match *self {
-            Item::Boundary(p) => Row { position: p, value: 0.0 },
-            Item::Interior(p, v) | Item::Exterior(p, v) => Row { position: p, value: v },
-            Item::Normal { tip, value, .. } => Row { position: tip, value },
+            Item::Boundary(p) => Row {
+                position: p,
+                value: 0.0,
+            },
+            Item::Interior(p, v) | Item::Exterior(p, v) => Row {
+                position: p,
+                value: v,
+            },
+            Item::Normal { tip, value, .. } => Row {
+                position: tip,
+                value,
+            },
         }
     }
 
@@ -100,7 +109,11 @@ impl Session {
         let fit = IncrementalFit::new(Kernel::Cubic, &rows)?;
         let interpolant = fit.interpolant()?;
         Ok(Self {
-            items: items.iter().enumerate().map(|(i, it)| Some((*it, i))).collect(),
+            items: items
+                .iter()
+                .enumerate()
+                .map(|(i, it)| Some((*it, i)))
+                .collect(),
             fit,
             interpolant,
             undo: Vec::new(),
@@ -269,12 +282,18 @@ impl Session {
         let hits = first_hits(&view, &Csg::Model(0), &[ray], &settings)
             .map_err(|e| SculptError::Singular(e.to_string()))?;
         let t = hits[0].ok_or(SculptError::Missed { origin, direction })?;
-        Ok(core::array::from_fn(|d| ray.origin[d] + t * ray.direction[d]))
+        Ok(core::array::from_fn(|d| {
+            ray.origin[d] + t * ray.direction[d]
+        }))
     }
 
     /// A boundary constraint where the ray meets the surface (knot insertion: the surface
     /// does not move).
-    pub fn pick_boundary(&mut self, origin: [f64; 3], direction: [f64; 3]) -> Result<usize, SculptError> {
+    pub fn pick_boundary(
+        &mut self,
+        origin: [f64; 3],
+        direction: [f64; 3],
+    ) -> Result<usize, SculptError> {
         let p = self.pick(origin, direction)?;
         self.add_boundary(p)
     }
@@ -336,7 +355,9 @@ impl Session {
         let g = self.interpolant.gradient(&p);
         let n = (g.iter().map(|v| v * v).sum::<f64>()).sqrt();
         if !(n > 0.0) {
-            return Err(SculptError::Singular("the gradient vanishes at that point".into()));
+            return Err(SculptError::Singular(
+                "the gradient vanishes at that point".into(),
+            ));
         }
         let tip = core::array::from_fn(|d| p[d] - self.normal_length * g[d] / n);
         let value = self.interpolant.value(&tip);
@@ -350,7 +371,10 @@ impl Session {
     /// Moves the free end of a normal handle.
     pub fn move_normal(&mut self, index: usize, to: [f64; 3]) -> Result<(), SculptError> {
         let (item, _) = self.item(index)?;
-        let Item::Normal { boundary, value, .. } = item else {
+        let Item::Normal {
+            boundary, value, ..
+        } = item
+        else {
             return Err(SculptError::WrongKind {
                 index,
                 is: item.name(),

@@ -3,7 +3,9 @@
 
 use proptest::prelude::*;
 use rbf_core::{Constraint, FitSettings, InterpolantView, Kernel, fit};
-use rbf_sculpt::{FloaterSettings, Floaters, IncrementalFit, Row, SculptError, Session, parse_script};
+use rbf_sculpt::{
+    FloaterSettings, Floaters, IncrementalFit, Row, SculptError, Session, parse_script,
+};
 
 /// Points on a jittered 5³ grid in [−1, 1]³ (never closer than 0.2), picked by `picks`.
 fn grid_point(k: usize, jitter: [f64; 3]) -> [f64; 3] {
@@ -20,7 +22,10 @@ fn fresh(rows: &[Row<3>]) -> rbf_core::Interpolant<f64, 3> {
             _ => Constraint::boundary(r.position),
         })
         .collect();
-    let settings = FitSettings { kernel: Some(Kernel::Cubic), ..Default::default() };
+    let settings = FitSettings {
+        kernel: Some(Kernel::Cubic),
+        ..Default::default()
+    };
     fit(&constraints, &settings).unwrap().interpolant
 }
 
@@ -36,7 +41,7 @@ proptest! {
         ops in proptest::collection::vec((0..3_u8, 0..1000_usize), 1..30),
     ) {
         let point = |i: usize| grid_point(cells[i], jitter[i]);
-        let value = |i: usize| if i % 3 == 0 { 0.0 } else { values[i] };
+        let value = |i: usize| if i.is_multiple_of(3) { 0.0 } else { values[i] };
         let start: Vec<Row<3>> = (0..10).map(|i| Row { position: point(i), value: value(i) }).collect();
         let mut inc = IncrementalFit::new(Kernel::Cubic, &start).unwrap();
         let mut live: Vec<usize> = (0..10).collect(); // row ids
@@ -142,11 +147,23 @@ fn bad_edits_are_errors_and_change_nothing() {
     let mut s = Session::new().unwrap();
     let before = s.interpolant().clone();
     assert_eq!(s.delete(99), Err(SculptError::NoSuchItem(99)));
-    assert!(matches!(s.move_normal(0, [0.0; 3]), Err(SculptError::WrongKind { .. })));
-    assert_eq!(s.add_boundary([f64::NAN, 0.0, 0.0]), Err(SculptError::NotFinite));
+    assert!(matches!(
+        s.move_normal(0, [0.0; 3]),
+        Err(SculptError::WrongKind { .. })
+    ));
+    assert_eq!(
+        s.add_boundary([f64::NAN, 0.0, 0.0]),
+        Err(SculptError::NotFinite)
+    );
     // A point on top of another one makes the system singular.
-    assert!(matches!(s.add_boundary([3.0, 3.0, 3.0]), Err(SculptError::Singular(_))));
-    assert!(matches!(s.pick_boundary([0.0, 9.0, 0.0], [0.0, 1.0, 0.0]), Err(SculptError::Missed { .. })));
+    assert!(matches!(
+        s.add_boundary([3.0, 3.0, 3.0]),
+        Err(SculptError::Singular(_))
+    ));
+    assert!(matches!(
+        s.pick_boundary([0.0, 9.0, 0.0], [0.0, 1.0, 0.0]),
+        Err(SculptError::Missed { .. })
+    ));
     assert_eq!(s.interpolant(), &before);
     // Deleting pivots refactors; leaving only the cube's top face (z = 3) is refused: four
     // coplanar points cannot fix a linear polynomial.
@@ -180,9 +197,15 @@ fn cv(points: &[[f64; 3]]) -> f64 {
 #[test]
 fn floaters_spread_evenly_and_keep_their_density_as_the_surface_grows() {
     let centre = [[0.0; 3]];
-    let sphere = |r: f64| InterpolantView::new(Kernel::Cubic, &centre, &[-1.0], r * r * r, [0.0; 3]).unwrap();
+    let sphere = |r: f64| {
+        InterpolantView::new(Kernel::Cubic, &centre, &[-1.0], r * r * r, [0.0; 3]).unwrap()
+    };
     let f = sphere(1.0);
-    let settings = FloaterSettings { spacing: 0.25, step: 0.25, projections: 4 };
+    let settings = FloaterSettings {
+        spacing: 0.25,
+        step: 0.25,
+        projections: 4,
+    };
     let mut floaters = Floaters::new(&f, &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], settings);
     floaters.settle(&f, 400);
     let diagonal = 2.0 * 3.0_f64.sqrt();
@@ -197,6 +220,10 @@ fn floaters_spread_evenly_and_keep_their_density_as_the_surface_grows() {
     let g = sphere(2.0_f64.sqrt());
     floaters.settle(&g, 400);
     let ratio = floaters.len() as f64 / count as f64;
-    assert!((1.6..2.5).contains(&ratio), "{count} → {} floaters", floaters.len());
+    assert!(
+        (1.6..2.5).contains(&ratio),
+        "{count} → {} floaters",
+        floaters.len()
+    );
     assert!(cv(floaters.points()) < 0.3);
 }
