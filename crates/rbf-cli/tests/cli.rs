@@ -788,3 +788,104 @@ fn blend_reports_what_each_model_kept() {
     );
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }
+
+#[test]
+fn sculpt_replays_the_torus_script_and_floaters_sample_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let script = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../rbf-sculpt/scripts/torus.json"
+    );
+    // One edit per line between the brackets.
+    let edits = std::fs::read_to_string(script).unwrap().lines().count() - 2;
+    let model = dir.path().join("torus.json");
+    let frames = dir.path().join("frames");
+    let o = rbf(
+        &[
+            "sculpt",
+            script,
+            "-o",
+            model.to_str().unwrap(),
+            "--frames",
+            frames.to_str().unwrap(),
+            "--frame-size",
+            "24",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_dir(&frames).unwrap().count(), edits);
+    let mesh = dir.path().join("torus.obj");
+    let o = rbf(
+        &[
+            "mesh",
+            model.to_str().unwrap(),
+            "-o",
+            mesh.to_str().unwrap(),
+            "--method",
+            "grid",
+            "--resolution",
+            "64",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("genus 1, 1 component"),
+        "{}",
+        stderr(&o)
+    );
+    let points = dir.path().join("torus.xyz");
+    let o = rbf(
+        &[
+            "floaters",
+            model.to_str().unwrap(),
+            "-n",
+            "200",
+            "-o",
+            points.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&points).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert!((140..=260).contains(&lines.len()), "{}", lines.len());
+    assert!(lines.iter().all(|l| l.split_whitespace().count() == 6));
+    // A script that names a missing item fails on that edit, with exit code 2.
+    let bad = write(
+        dir.path(),
+        "bad.json",
+        r#"[{"add_boundary": {"position": [0, 1.5, 0]}}, {"delete": {"item": 99}}]"#,
+    );
+    let o = rbf(
+        &[
+            "sculpt",
+            bad.to_str().unwrap(),
+            "-o",
+            model.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("edit 2") && stderr(&o).contains("no item 99"),
+        "{}",
+        stderr(&o)
+    );
+    let bad = write(
+        dir.path(),
+        "bad2.json",
+        r#"[{"add_boundary": {"where": [0, 1.5, 0]}}]"#,
+    );
+    let o = rbf(
+        &[
+            "sculpt",
+            bad.to_str().unwrap(),
+            "-o",
+            model.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
