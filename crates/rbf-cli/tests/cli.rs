@@ -310,14 +310,34 @@ fn demo_runs_and_writes_models() {
     let out = dir.path().join("demo");
     let o = rbf(&["demo", "-o", out.to_str().unwrap()], None);
     assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8(o.stdout).unwrap();
     for name in ["figure2-blob", "sculpt-start", "torus-2000"] {
         assert!(out.join(format!("{name}.json")).exists(), "{name}");
         assert!(out.join(format!("{name}.obj")).exists(), "{name}");
     }
+    assert!(stdout.contains("watertight, genus 1"), "{stdout}");
+    // The main job: the built-in mesh converted, polygonized and rendered; every file it
+    // names exists and is what it claims.
+    for file in ["spot.json", "spot-implicit.obj", "spot.png"] {
+        assert!(stdout.contains(file), "{stdout}");
+    }
+    let model = std::fs::read_to_string(out.join("spot.json")).unwrap();
+    assert!(model.contains("\"format\": \"rbf-model\""));
+    let png = std::fs::read(out.join("spot.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let o = rbf(
+        &["check", out.join("spot-implicit.obj").to_str().unwrap()],
+        None,
+    );
     assert!(
         String::from_utf8(o.stdout)
             .unwrap()
-            .contains("watertight, genus 1")
+            .contains("watertight: yes")
+    );
+    let errors = stdout.lines().find(|l| l.contains("max error")).unwrap();
+    assert!(
+        errors.contains("max error 1.00") || errors.contains("max error 1.41"),
+        "{errors}"
     );
 }
 

@@ -189,7 +189,11 @@ pub fn render(
             .clone()
             .unwrap_or_else(|| default_lights(camera)),
         ground: settings.ground.then_some((lo[1], size / 6.0)),
-        offset: 1e-4 * size,
+        // Secondary rays start well beyond the distance at which a tracer calls a hit.
+        offset: tracers
+            .iter()
+            .map(|t| 20.0 * t.epsilon)
+            .fold(1e-4 * size, f64::max),
         tracers,
         objects,
         settings,
