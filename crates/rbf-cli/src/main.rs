@@ -2,12 +2,15 @@
 
 mod blend;
 mod check;
+mod completions;
 mod convert;
 mod demo;
 mod eval;
+mod export;
 mod failure;
 mod fit;
 mod floaters;
+mod info;
 mod io;
 mod mesh;
 mod plot;
@@ -76,10 +79,25 @@ enum Command {
     /// Plot a 2D model's curve and its constraints to PNG.
     #[command(after_help = plot::HELP)]
     Plot(plot::PlotArgs),
+    /// Describe a model file: dimension, kernel, constraints by kind, bounding box, λ, version.
+    #[command(after_help = "Examples:\n  rbf info model.json\n  rbf info model.json --json")]
+    Info(info::InfoArgs),
+    /// Write a model as source code (constant arrays) for targets without an allocator.
+    #[command(after_help = export::HELP)]
+    Export(export::ExportArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    #[command(
+        after_help = "Examples:\n  rbf completions bash > ~/.local/share/bash-completion/completions/rbf\n  rbf completions zsh > ~/.zfunc/_rbf"
+    )]
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
     /// Check a mesh: holes, non-manifold edges and vertices, orientation, components, genus.
     #[command(after_help = "Examples:\n  rbf check bunny.obj\n  rbf check scan.ply --json")]
     Check(check::CheckArgs),
-    /// Fit the built-in examples of the paper and report what it measured.
+    /// The main job on built-in data: convert a mesh shipped in the binary to an implicit
+    /// surface, polygonize it, render it next to the original; then fit the paper's examples.
     #[command(after_help = "Example:\n  rbf demo -o demo-out")]
     Demo {
         /// Directory for the models written.
@@ -139,6 +157,12 @@ fn main() -> ExitCode {
         Command::Floaters(args) => floaters::run(&args, cli.quiet),
         Command::Plot(args) => plot::run(&args, cli.quiet),
         Command::Demo { output } => demo::run(&output, cli.quiet),
+        Command::Info(args) => info::run(&args),
+        Command::Export(args) => export::run(&args, cli.quiet),
+        Command::Completions { shell } => {
+            completions::run::<Cli>(shell);
+            Ok(())
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

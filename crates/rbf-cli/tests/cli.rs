@@ -909,3 +909,70 @@ fn sculpt_replays_the_torus_script_and_floaters_sample_it() {
     );
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
+
+#[test]
+fn info_export_and_completions() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/embedded");
+    let model = format!("{root}/model.json");
+    // The committed export is what `rbf export` writes today.
+    let out = dir.path().join("model.rs");
+    let o = rbf(
+        &[
+            "export",
+            &model,
+            "--format",
+            "rust",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let committed = std::fs::read_to_string(format!("{root}/src/model.rs")).unwrap();
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap(),
+        committed,
+        "re-run rbf export for examples/embedded"
+    );
+    let o = rbf(
+        &[
+            "export",
+            &model,
+            "--precision",
+            "f32",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success());
+    assert!(
+        std::fs::read_to_string(&out)
+            .unwrap()
+            .contains("InterpolantView<'static, f32, 3>")
+    );
+    // Info, for people and as JSON.
+    let o = rbf(&["info", &model], None);
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        text.contains("3D model, kernel cubic") && text.contains("4 boundary, 1 interior"),
+        "{text}"
+    );
+    let o = rbf(&["info", &model, "--json"], None);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["constraints"]["boundary"], 4);
+    assert_eq!(v["dimension"], 3);
+    let o = rbf(&["info", "/nonexistent.json"], None);
+    assert_eq!(o.status.code(), Some(2));
+    // Completions name the subcommands.
+    for shell in ["bash", "zsh", "fish"] {
+        let o = rbf(&["completions", shell], None);
+        assert!(o.status.success());
+        let script = String::from_utf8(o.stdout).unwrap();
+        assert!(
+            script.contains("sculpt") && script.contains("render"),
+            "{shell}"
+        );
+    }
+}
