@@ -54,7 +54,7 @@ fn crossing(f: &rbf_core::Interpolant<f64, 3>, d: [f64; 3]) -> f64 {
 }
 
 /// Spot the cow (Keenan Crane, public domain; see NOTICE.md), inside the binary.
-const SPOT: &[u8] = include_bytes!("../../../data/meshes/spot.obj");
+pub(crate) const SPOT: &[u8] = include_bytes!("../../../data/meshes/spot.obj");
 
 /// Converts the built-in mesh, polygonizes the result and renders both side by side.
 fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {

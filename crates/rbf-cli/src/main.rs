@@ -10,6 +10,7 @@ mod export;
 mod failure;
 mod fit;
 mod floaters;
+mod gallery;
 mod info;
 mod io;
 mod mesh;
@@ -79,6 +80,9 @@ enum Command {
     /// Plot a 2D model's curve and its constraints to PNG.
     #[command(after_help = plot::HELP)]
     Plot(plot::PlotArgs),
+    /// Recompute the paper's figures: PNGs, their models, what they measured, an index.html.
+    #[command(after_help = gallery::HELP)]
+    Gallery(gallery::GalleryArgs),
     /// Describe a model file: dimension, kernel, constraints by kind, bounding box, λ, version.
     #[command(after_help = "Examples:\n  rbf info model.json\n  rbf info model.json --json")]
     Info(info::InfoArgs),
@@ -158,6 +162,7 @@ fn main() -> ExitCode {
         Command::Plot(args) => plot::run(&args, cli.quiet),
         Command::Demo { output } => demo::run(&output, cli.quiet),
         Command::Info(args) => info::run(&args),
+        Command::Gallery(args) => gallery::run(&args, cli.quiet),
         Command::Export(args) => export::run(&args, cli.quiet),
         Command::Completions { shell } => {
             completions::run::<Cli>(shell);

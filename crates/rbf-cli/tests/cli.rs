@@ -976,3 +976,41 @@ fn info_export_and_completions() {
         );
     }
 }
+
+#[test]
+fn the_gallery_reproduces_the_papers_figures_at_reduced_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("gallery");
+    let o = rbf(
+        &["gallery", "-o", out.to_str().unwrap(), "--size", "40", "-q"],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("gallery.json")).unwrap()).unwrap();
+    let figures = summary["figures"].as_array().unwrap();
+    let fig = |name: &str| &figures.iter().find(|f| f["figure"] == name).unwrap()["facts"];
+    for f in figures {
+        let name = f["figure"].as_str().unwrap();
+        assert!(out.join(format!("{name}.png")).exists(), "{name}");
+    }
+    assert_eq!(figures.len(), 9);
+    let closed = |v: &serde_json::Value| v["watertight"] == true && v["components"] == 1;
+    // The tetrahedron's surface is closed; the branching shape is one piece.
+    assert!(closed(&fig("fig2")["left"]) && fig("fig2")["left"]["genus"] == 0);
+    assert!(closed(&fig("fig2")["right"]));
+    // 2D curves pass through their boundary constraints.
+    for name in ["fig1", "fig4", "fig5"] {
+        assert!(
+            fig(name)["boundary_residual"].as_f64().unwrap() < 1e-9,
+            "{name}"
+        );
+    }
+    assert_eq!(fig("fig4")["inside_between_the_two"], true);
+    // The sculpted torus has genus 1; the blended tori are one watertight surface.
+    assert!(closed(&fig("fig7")["right"]) && fig("fig7")["right"]["genus"] == 1);
+    assert!(closed(&fig("fig9")["blend"]));
+    assert!(closed(&fig("fig3-fig6")["surface"]));
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert_eq!(html.matches("<figure>").count(), 9);
+}
