@@ -1,6 +1,7 @@
 //! `rbf gallery`: the figures of paper 000 that can be computed, each as a PNG with the models
 //! behind it, a `gallery.json` of what each figure measured, and an `index.html`.
 
+use std::f64::consts::FRAC_1_SQRT_2;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -334,7 +335,7 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
             Constraint::normal([0.0, 1.0], [0.0, 1.0]),
             Constraint::normal([-1.0, 0.0], [-1.0, 0.0]),
             Constraint::normal([0.0, -1.0], [0.0, -1.0]),
-            Constraint::normal([-0.7071, 0.7071], nw),
+            Constraint::normal([-FRAC_1_SQRT_2, FRAC_1_SQRT_2], nw),
         ]
     };
     let left = fit(normals([-1.0, 1.0]))?;
