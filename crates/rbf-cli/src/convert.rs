@@ -71,7 +71,7 @@ enum Method {
     Normals,
 }
 
-pub(crate) fn run(args: &ConvertArgs, quiet: bool) -> Result<(), Failure> {
+pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), Failure> {
     let mesh = read_mesh(&args.mesh).map_err(|e| mesh_failure(&e))?;
     let source = args.mesh.display().to_string();
     let failure = |e: ConvertError| match e {
@@ -128,6 +128,15 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool) -> Result<(), Failure> {
             );
             bar.set_message("voxelizing");
             let result = convert_iterative(&mesh, &settings, |it| {
+                if verbose {
+                    bar.suspend(|| {
+                        eprintln!(
+                            "iteration {:2}: {} boundary / {} interior / {} exterior, max {:.2} / RMS {:.3} voxels; fit {:.2} s, evaluate {:.2} s, distances {:.2} s, select {:.3} s",
+                            it.iteration, it.boundary, it.interior, it.exterior, it.max_error, it.rms_error,
+                            it.fit_seconds, it.evaluate_seconds, it.distance_seconds, it.select_seconds
+                        )
+                    });
+                }
                 bar.set_position(it.iteration as u64);
                 bar.set_message(format!(
                     "max {:.2} / RMS {:.2} voxels, {} constraints",

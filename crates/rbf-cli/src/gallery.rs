@@ -232,10 +232,17 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
         size: args.size.clamp(16, 2048),
         entries: Vec::new(),
     };
+    let bar = indicatif::ProgressBar::new(9);
+    if quiet {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} figures, last {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
     let say = |s: &str| {
-        if !quiet {
-            eprintln!("{s}");
-        }
+        bar.inc(1);
+        bar.set_message(s.to_string());
     };
 
     // Figure 1: four zero-valued and one positive constraint; then three more zero-valued.
@@ -423,6 +430,7 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     g.add("fig10", "Fig. 10: two implicit surfaces with shadows and reflections; the intersection and the difference of two spheres.", &pair(&pair(&left, &middle)?, &right)?, json!({}))?;
     say("fig10");
 
+    bar.finish_and_clear();
     let summary = json!({"figures": g.entries});
     write_atomically(
         &args.output.join("gallery.json"),

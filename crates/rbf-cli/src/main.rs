@@ -41,8 +41,11 @@ struct Cli {
     #[command(subcommand)]
     command: Command,
     /// Print nothing but results and errors.
-    #[arg(short, long, global = true)]
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
     quiet: bool,
+    /// Print more: every iteration of a conversion with its timings, the work of a render.
+    #[arg(short, long, global = true)]
+    verbose: bool,
     /// Worker threads (default: one per core).
     #[arg(long, global = true, value_name = "N")]
     threads: Option<usize>,
@@ -152,10 +155,10 @@ fn main() -> ExitCode {
         Command::Fit(args) => fit::run(&args, cli.quiet),
         Command::Eval(args) => eval::run(&args),
         Command::Check(args) => check::run(&args),
-        Command::Convert(args) => convert::run(&args, cli.quiet),
+        Command::Convert(args) => convert::run(&args, cli.quiet, cli.verbose),
         Command::Mesh(args) => mesh::run(&args, cli.quiet),
         Command::Voxelize(args) => voxelize::run(&args, cli.quiet),
-        Command::Render(args) => render::run(&args, cli.quiet),
+        Command::Render(args) => render::run(&args, cli.quiet, cli.verbose),
         Command::Blend(args) => blend::run(&args, cli.quiet),
         Command::Sculpt(args) => sculpt::run(&args, cli.quiet),
         Command::Floaters(args) => floaters::run(&args, cli.quiet),

@@ -122,7 +122,7 @@ fn is_mesh(path: &Path) -> bool {
     )
 }
 
-pub(crate) fn run(args: &RenderArgs, quiet: bool) -> Result<(), Failure> {
+pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), Failure> {
     let settings = RenderSettings {
         samples: args.samples,
         shadows: args.shadows,
@@ -204,8 +204,14 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool) -> Result<(), Failure> {
         let bad = |e: rbf_render::RenderError| Failure::new(BAD_INPUT, e.to_string());
         let (lo, hi) = surface_bounds(&views, &objects, &settings).map_err(bad)?;
         let camera = camera(args, lo, hi);
-        let (image, stats) = render(&views, &objects, &camera, &settings).map_err(bad)?;
-        if !quiet {
+        let spinner = crate::fit::spinner(
+            quiet,
+            format!("tracing {} × {} pixels", args.width, args.height),
+        );
+        let rendered = render(&views, &objects, &camera, &settings);
+        spinner.finish_and_clear();
+        let (image, stats) = rendered.map_err(bad)?;
+        if verbose {
             eprintln!(
                 "traced {} rays, {} evaluations of f ({:.2} s bounds, {:.2} s tracing; steps {})",
                 stats.rays,

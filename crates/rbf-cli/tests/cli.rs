@@ -1014,3 +1014,30 @@ fn the_gallery_reproduces_the_papers_figures_at_reduced_size() {
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert_eq!(html.matches("<figure>").count(), 9);
 }
+
+#[test]
+fn verbose_shows_every_iteration_and_conflicts_with_quiet() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/torus.obj");
+    let out = dir.path().join("t.json");
+    let o = rbf(
+        &[
+            "convert",
+            mesh,
+            "-o",
+            out.to_str().unwrap(),
+            "--resolution",
+            "40",
+            "-v",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("iteration  1:") && stderr(&o).contains("evaluate"),
+        "{}",
+        stderr(&o)
+    );
+    let o = rbf(&["-q", "-v", "info", out.to_str().unwrap()], None);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+}
