@@ -16,7 +16,8 @@ use crate::failure::{BAD_INPUT, Failure};
 use crate::io::write_atomically;
 
 pub(crate) const HELP: &str = "\
-Figures 1, 2, 3, 4, 5, 6, 7, 8, 9 and 10 of Turk & O'Brien (2002), recomputed: each a PNG (two
+Figures 1, 2, 3, 4, 5, 6, 7, 8, 9 and 10 of Turk & O'Brien (2002) and Figure 3 of Yngve & Turk
+(2002), recomputed: each a PNG (two
 panels side by side where the paper has two), the model files behind it, and what it measured
 in gallery.json (watertightness and genus of 3D surfaces, residuals at the constraints of 2D
 curves). index.html shows them with one line of caption each.
@@ -232,7 +233,7 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
         size: args.size.clamp(16, 2048),
         entries: Vec::new(),
     };
-    let bar = indicatif::ProgressBar::new(9);
+    let bar = indicatif::ProgressBar::new(10);
     if quiet {
         bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
@@ -429,6 +430,51 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     let right = g.shoot(&[&a, &c], &[Object::new(cut, 0)], &look)?;
     g.add("fig10", "Fig. 10: two implicit surfaces with shadows and reflections; the intersection and the difference of two spheres.", &pair(&pair(&left, &middle)?, &right)?, json!({}))?;
     say("fig10");
+
+    // Paper 001, Figure 3: the 2D refinement steps on a teapot silhouette, goal in grey.
+    let steps = crate::refine2d::refine(96, 6).map_err(|e| Failure::fit("teapot", &e))?;
+    let shown: Vec<&crate::refine2d::Step> = [0, 1, 2, steps.len() - 1]
+        .iter()
+        .map(|&k| &steps[k.min(steps.len() - 1)])
+        .collect();
+    let mut panels = Vec::new();
+    for (k, step) in shown.iter().enumerate() {
+        g.save(&format!("yngve-fig3-step{}", k + 1), &step.model)?;
+        let settings = PlotSettings {
+            width: g.size,
+            height: g.size * 2 / 3,
+            bounds: Some(([-1.7, -1.2], [1.9, 1.2])),
+            ..Default::default()
+        };
+        let mut image = plot_curve(
+            &step.model.interpolant.view(),
+            &step.model.constraints,
+            &settings,
+        )
+        .map_err(bad)?;
+        // The goal under the curve, in grey.
+        let (w, h) = (f64::from(image.width()), f64::from(image.height()));
+        for y in 0..image.height() {
+            for x in 0..image.width() {
+                let p = [
+                    -1.7 + (f64::from(x) + 0.5) / w * 3.6,
+                    1.2 - (f64::from(y) + 0.5) / h * 2.4,
+                ];
+                if crate::refine2d::goal(p) {
+                    let c = image.get(x, y);
+                    image.set(x, y, c.map(|v| v * 0.82));
+                }
+            }
+        }
+        panels.push(image);
+    }
+    let mut strip = panels[0].clone();
+    for p in &panels[1..] {
+        strip = pair(&strip, p)?;
+    }
+    let errors: Vec<Value> = steps.iter().map(|s| json!({"max": s.max_error, "rms": s.rms_error, "constraints": s.model.constraints.len()})).collect();
+    g.add("yngve-fig3", "Yngve & Turk, Fig. 3: iterative refinement in 2D, steps 1, 2, 3 and the last; the goal in grey, constraints marked.", &strip, json!({"steps": errors}))?;
+    say("yngve-fig3");
 
     bar.finish_and_clear();
     let summary = json!({"figures": g.entries});

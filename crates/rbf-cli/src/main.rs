@@ -15,6 +15,7 @@ mod info;
 mod io;
 mod mesh;
 mod plot;
+mod refine2d;
 mod render;
 mod sculpt;
 mod voxelize;

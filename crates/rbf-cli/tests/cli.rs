@@ -994,7 +994,7 @@ fn the_gallery_reproduces_the_papers_figures_at_reduced_size() {
         let name = f["figure"].as_str().unwrap();
         assert!(out.join(format!("{name}.png")).exists(), "{name}");
     }
-    assert_eq!(figures.len(), 9);
+    assert_eq!(figures.len(), 10);
     let closed = |v: &serde_json::Value| v["watertight"] == true && v["components"] == 1;
     // The tetrahedron's surface is closed; the branching shape is one piece.
     assert!(closed(&fig("fig2")["left"]) && fig("fig2")["left"]["genus"] == 0);
@@ -1011,8 +1011,13 @@ fn the_gallery_reproduces_the_papers_figures_at_reduced_size() {
     assert!(closed(&fig("fig7")["right"]) && fig("fig7")["right"]["genus"] == 1);
     assert!(closed(&fig("fig9")["blend"]));
     assert!(closed(&fig("fig3-fig6")["surface"]));
+    // Yngve & Turk's 2D refinement: errors fall from the first step to the last.
+    let steps = fig("yngve-fig3")["steps"].as_array().unwrap();
+    let (first, last) = (&steps[0], &steps[steps.len() - 1]);
+    assert!(last["max"].as_f64().unwrap() < first["max"].as_f64().unwrap());
+    assert!(last["rms"].as_f64().unwrap() < 0.5 * first["rms"].as_f64().unwrap());
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
-    assert_eq!(html.matches("<figure>").count(), 9);
+    assert_eq!(html.matches("<figure>").count(), 10);
 }
 
 #[test]
