@@ -57,6 +57,7 @@ pub(crate) fn run(args: &FloatersArgs, quiet: bool) -> Result<(), Failure> {
     let area = std::f64::consts::PI * diagonal * diagonal;
     let hexagon = 3.0_f64.sqrt() / 2.0;
     let mut spacing = (area / (args.count as f64 * hexagon)).sqrt();
+    let spinner = crate::fit::spinner(quiet, format!("settling about {} floaters", args.count));
     let mut floaters = Floaters::new(
         &f,
         &seeds,
@@ -73,6 +74,7 @@ pub(crate) fn run(args: &FloatersArgs, quiet: bool) -> Result<(), Failure> {
         }
         spacing *= (floaters.len() as f64 / args.count as f64).sqrt();
     }
+    spinner.finish_and_clear();
     let mut text = String::new();
     for (p, n) in floaters.points().iter().zip(floaters.normals(&f)) {
         let _ = writeln!(

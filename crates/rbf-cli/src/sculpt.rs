@@ -54,7 +54,12 @@ pub(crate) fn run(args: &SculptArgs, quiet: bool) -> Result<(), Failure> {
     }
     let start = Instant::now();
     let mut solve_seconds = 0.0;
+    let bar = indicatif::ProgressBar::new(edits.len() as u64);
+    if quiet {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
     for (k, edit) in edits.iter().enumerate() {
+        bar.set_position(k as u64);
         let t = Instant::now();
         session.apply(edit).map_err(|e| {
             Failure::new(
@@ -86,6 +91,7 @@ pub(crate) fn run(args: &SculptArgs, quiet: bool) -> Result<(), Failure> {
             write_atomically(&dir.join(format!("frame-{:03}.png", k + 1)), &png)?;
         }
     }
+    bar.finish_and_clear();
     write_atomically(&args.output, session.model().to_json().as_bytes())?;
     if !quiet {
         eprintln!(
