@@ -40,7 +40,7 @@ pub(crate) struct FitArgs {
     #[arg(short, long, value_name = "MODEL.json")]
     output: PathBuf,
     /// Regularization λ ≥ 0 added to the diagonal: 0 interpolates exactly, larger is smoother.
-    #[arg(long, value_name = "L")]
+    #[arg(long, value_name = "L", allow_hyphen_values = true)]
     lambda: Option<f64>,
     /// Radial kernel [default: thin-plate in 2D, cubic in 3D].
     #[arg(long, value_enum)]
@@ -50,7 +50,7 @@ pub(crate) struct FitArgs {
     dim: Option<u8>,
     /// Distance from a normal constraint to its inside point [default: 0.01 × the longest side
     /// of the bounding box].
-    #[arg(long, value_name = "D")]
+    #[arg(long, value_name = "D", allow_hyphen_values = true)]
     offset: Option<f64>,
     /// Two points closer than this fraction of the bounding box's longest side are an error
     /// (coincident constraints make the system singular).

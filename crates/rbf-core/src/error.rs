@@ -59,7 +59,7 @@ pub enum FitError {
     },
     /// Two constraint points coincide (or nearly): the system would be singular.
     #[error(
-        "{first} and {second} are at the same place (distance {distance:e}): merge them or move one"
+        "{first} and {second} are {distance:e} apart, closer than the minimum separation {minimum:e} (a fraction of the constraints' extent): merge them, move one, or lower the minimum separation"
     )]
     Coincident {
         /// The first of the pair.
@@ -68,6 +68,9 @@ pub enum FitError {
         second: RowSource,
         /// Their distance.
         distance: f64,
+        /// The smallest distance allowed: `FitSettings::min_separation` times the extent of the
+        /// constraints (so a single far-away point makes every other pair "coincide").
+        minimum: f64,
     },
     /// All points lie on a plane (3D) or a line (2D) or lower: the linear part is undetermined.
     #[error(

@@ -331,6 +331,7 @@ impl<const D: usize> System<D> {
                 first: self.sources[i],
                 second: self.sources[j],
                 distance: dist * self.scale,
+                minimum: tolerance * self.scale,
             }),
             None => Ok(()),
         }

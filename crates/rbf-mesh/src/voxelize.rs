@@ -29,7 +29,8 @@ pub struct VoxelSettings {
 pub enum VoxelMethod {
     /// Rays for a watertight mesh, winding numbers otherwise (by [`TriMesh::check`]).
     Auto,
-    /// Parallel rays along z, crossings counted with their sign: exact for watertight meshes.
+    /// Parallel rays along z, crossings counted with their sign: exact for watertight meshes
+    /// of either orientation (inside is a non-zero count).
     Rays,
     /// Generalized winding numbers (> ½ is inside): robust to holes, overlaps and non-manifold
     /// parts. Voxels whose class differs from a neighbour's are supersampled.
@@ -218,7 +219,9 @@ pub fn voxelize(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>,
                                     winding -= crossings[next].1;
                                     next += 1;
                                 }
-                                if winding > 0 {
+                                // Inside for either orientation: an inside-out mesh
+                                // counts −1 where an outward one counts +1.
+                                if winding != 0 {
                                     slab[j * nz + k] += weight;
                                 }
                             }

@@ -124,6 +124,7 @@ fn duplicate_points_are_named() {
         first,
         second,
         distance,
+        ..
     } = e
     else {
         panic!("{e}")
