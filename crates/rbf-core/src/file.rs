@@ -360,9 +360,14 @@ impl AnyModel {
         }
         match value.get("version").and_then(|v| v.as_u64()) {
             Some(v) if v == MODEL_VERSION as u64 => {}
-            v => {
+            Some(v) => {
                 return Err(FileError::Format(format!(
-                    "version {v:?} cannot be read; this library reads version {MODEL_VERSION}"
+                    "version {v} cannot be read; this library reads version {MODEL_VERSION}"
+                )));
+            }
+            None => {
+                return Err(FileError::Format(format!(
+                    "the `version` field is missing or not a whole number; this library reads version {MODEL_VERSION}"
                 )));
             }
         }

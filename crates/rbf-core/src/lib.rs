@@ -47,6 +47,11 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+#[cfg(feature = "std")]
+mod memory;
+#[cfg(feature = "std")]
+pub use memory::available_memory;
+
 mod bound;
 mod kernel;
 mod math;

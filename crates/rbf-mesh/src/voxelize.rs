@@ -63,9 +63,15 @@ pub fn voxel_grid(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32
     let shape: [usize; 3] =
         core::array::from_fn(|d| ((hi[d] - lo[d]) / h).ceil().max(1.0) as usize + 2 * m);
     let voxels = shape.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
-    if voxels.is_none_or(|v| v > 1 << 33) {
+    // A volume and its signed distance take about 32 bytes a voxel (densities, distances,
+    // their sources); refuse what the machine cannot hold.
+    let bytes = voxels.map_or(u64::MAX, |v| (v as u64).saturating_mul(32));
+    let available = rbf_core::available_memory();
+    if voxels.is_none_or(|v| v > 1 << 33) || available.is_some_and(|a| bytes > a) {
         return Err(MeshError::Invalid(format!(
-            "a volume of {shape:?} voxels is too large"
+            "a volume of {shape:?} voxels is too large: it needs about {} MiB{}; use a coarser resolution",
+            bytes >> 20,
+            available.map_or(String::new(), |a| format!(" but only {} MiB are available", a >> 20))
         )));
     }
     let origin = core::array::from_fn(|d| lo[d] - (m as f64 - 0.5) * h);

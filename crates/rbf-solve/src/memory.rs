@@ -2,13 +2,7 @@
 
 use rbf_core::FitError;
 
-/// Bytes of memory the system says are available (Linux `MemAvailable`), if known.
-pub fn available_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
-}
+pub use rbf_core::available_memory;
 
 /// Refuses a system of `rows` whose dense matrices would take `bytes` when that is more than
 /// the memory available (or more than the address space can hold).
