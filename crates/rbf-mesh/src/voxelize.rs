@@ -59,9 +59,17 @@ pub fn voxel_grid(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32
         )));
     }
     let h = longest / settings.resolution as f64;
+    if !(h > 0.0 && h.is_finite()) {
+        // A mesh so small (subnormal) or so large that a voxel's size is 0 or infinite.
+        return Err(MeshError::Invalid(format!(
+            "a mesh {longest:e} across cannot be cut into voxels at resolution {}: scale it",
+            settings.resolution
+        )));
+    }
     let m = settings.margin;
-    let shape: [usize; 3] =
-        core::array::from_fn(|d| ((hi[d] - lo[d]) / h).ceil().max(1.0) as usize + 2 * m);
+    let shape: [usize; 3] = core::array::from_fn(|d| {
+        (((hi[d] - lo[d]) / h).ceil().max(1.0) as usize).saturating_add(m.saturating_mul(2))
+    });
     let voxels = shape.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
     // A volume and its signed distance take about 32 bytes a voxel (densities, distances,
     // their sources); refuse what the machine cannot hold.
@@ -71,7 +79,10 @@ pub fn voxel_grid(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32
         return Err(MeshError::Invalid(format!(
             "a volume of {shape:?} voxels is too large: it needs about {} MiB{}; use a coarser resolution",
             bytes >> 20,
-            available.map_or(String::new(), |a| format!(" but only {} MiB are available", a >> 20))
+            available.map_or(String::new(), |a| format!(
+                " but only {} MiB are available",
+                a >> 20
+            ))
         )));
     }
     let origin = core::array::from_fn(|d| lo[d] - (m as f64 - 0.5) * h);

@@ -139,3 +139,35 @@ fn a_torus_with_holes_is_still_classified_by_winding_numbers() {
         .count();
     assert!(leaked > differ, "rays {leaked} vs winding {differ}");
 }
+
+/// Found by fuzzing: a mesh whose extent is subnormal made the voxel size 0 and the grid's
+/// size overflow. Now a clear error; tiny and huge meshes voxelize without a panic.
+#[test]
+fn meshes_too_small_or_too_large_to_voxelize_are_errors() {
+    for scale in [5e-324, 1e-310, 1e300] {
+        let mesh = rbf_mesh::TriMesh::new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [scale, 0.0, 0.0],
+                [0.0, scale, 0.0],
+                [0.0, 0.0, scale],
+            ],
+            vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+        )
+        .unwrap();
+        for method in [rbf_mesh::VoxelMethod::Rays, rbf_mesh::VoxelMethod::Winding] {
+            let settings = rbf_mesh::VoxelSettings {
+                resolution: 8,
+                method,
+                ..Default::default()
+            };
+            let result = rbf_mesh::voxelize(&mesh, &settings);
+            // The smallest subnormal makes the voxel size 0: refused. The others must simply
+            // not panic (their triangles' areas underflow, so nothing is inside).
+            if scale == 5e-324 {
+                let e = result.err().map(|e| e.to_string()).unwrap_or_default();
+                assert!(e.contains("cannot be cut into voxels"), "{e}");
+            }
+        }
+    }
+}
