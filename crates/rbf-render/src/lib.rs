@@ -38,6 +38,7 @@ mod image;
 mod mesh;
 mod plot;
 mod scene;
+mod shade;
 mod tracer;
 mod vector;
 

@@ -7,6 +7,7 @@ use crate::RenderError;
 use crate::camera::Camera;
 use crate::image::{Image, check_size};
 use crate::scene::{RenderSettings, default_lights};
+use crate::shade::{checker, phong, sky};
 use crate::vector::{Vec3, add, cross, dot, normalize, scale, sub};
 
 /// How a mesh's faces are shaded.
@@ -167,18 +168,7 @@ pub fn render_mesh(
             } else {
                 n
             };
-            let view = scale(ray.direction, -1.0);
-            let mut out = colour.map(|v| 0.15 * v);
-            for light in &lights {
-                let l = normalize(light.direction);
-                let diffuse = dot(n, l).max(0.0);
-                let mirror = sub(scale(n, 2.0 * dot(n, l)), l);
-                let specular = dot(mirror, view).max(0.0).powi(40) * 0.35;
-                for d in 0..3 {
-                    out[d] += light.intensity * (0.85 * diffuse * colour[d] + specular);
-                }
-            }
-            out
+            phong(colour, n, ray.direction, &lights, |_| true)
         })
         .collect();
     // Average each pixel's s × s samples.
@@ -230,12 +220,8 @@ fn background(ray: &crate::Ray, settings: &RenderSettings, floor: f64, square: f
     if settings.ground && ray.direction[1] < 0.0 && ray.origin[1] > floor {
         let t = (floor - ray.origin[1]) / ray.direction[1];
         let p = crate::vector::along(ray.origin, ray.direction, t);
-        let parity = ((p[0] / square).floor() + (p[2] / square).floor()) as i64 & 1;
-        let grey = if parity == 0 { 0.85 } else { 0.65 };
         // The floor lit from above, as in the traced scenes.
-        return [grey * (0.15 + 0.85 * 0.8); 3];
+        return checker(p, square).map(|grey| grey * (0.15 + 0.85 * 0.8));
     }
-    let [top, horizon] = settings.background;
-    let t = ray.direction[1].clamp(0.0, 1.0);
-    core::array::from_fn(|d| horizon[d] + (top[d] - horizon[d]) * t)
+    sky(ray.direction, settings.background)
 }

@@ -10,6 +10,7 @@ use crate::RenderError;
 use crate::camera::{Camera, Ray};
 use crate::csg::Csg;
 use crate::image::{Image, check_size};
+use crate::shade::{checker, phong, sky};
 use crate::tracer::{Lipschitz, TraceCounts, Tracer};
 use crate::vector::{Vec3, add, along, cross, dot, normalize, scale, sub};
 
@@ -419,21 +420,7 @@ impl Renderer<'_, '_> {
         }
         for (k, s) in surfaces.iter().enumerate() {
             let (i, _, n, colour, _) = *s;
-            let view = scale(rays[i].direction, -1.0);
-            let mut c = colour.map(|v| 0.15 * v);
-            for (l, light) in self.lights.iter().enumerate() {
-                if !lit[l][k] {
-                    continue;
-                }
-                let dir = normalize(light.direction);
-                let diffuse = dot(n, dir).max(0.0);
-                let mirror = sub(scale(n, 2.0 * dot(n, dir)), dir);
-                let specular = dot(mirror, view).max(0.0).powi(40) * 0.35;
-                for d in 0..3 {
-                    c[d] += light.intensity * (0.85 * diffuse * colour[d] + specular);
-                }
-            }
-            out[i] = c;
+            out[i] = phong(colour, n, rays[i].direction, &self.lights, |l| lit[l][k]);
         }
         // Mirror reflections.
         let mirrors: Vec<usize> = (0..surfaces.len())
@@ -463,14 +450,10 @@ impl Renderer<'_, '_> {
     }
 
     fn sky(&self, ray: &Ray) -> [f64; 3] {
-        let [top, horizon] = self.settings.background;
-        let t = ray.direction[1].clamp(0.0, 1.0);
-        core::array::from_fn(|d| horizon[d] + (top[d] - horizon[d]) * t)
+        sky(ray.direction, self.settings.background)
     }
 
     fn checker(&self, p: Vec3) -> [f64; 3] {
-        let square = self.ground.map_or(1.0, |g| g.1);
-        let parity = ((p[0] / square).floor() + (p[2] / square).floor()) as i64 & 1;
-        if parity == 0 { [0.85; 3] } else { [0.65; 3] }
+        checker(p, self.ground.map_or(1.0, |g| g.1))
     }
 }
