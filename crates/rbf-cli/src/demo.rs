@@ -56,6 +56,33 @@ fn crossing(f: &rbf_core::Interpolant<f64, 3>, d: [f64; 3]) -> f64 {
 /// Spot the cow (Keenan Crane, public domain; see NOTICE.md), inside the binary.
 pub(crate) const SPOT: &[u8] = include_bytes!("../../../data/meshes/spot.obj");
 
+/// A mesh (left, rasterized) and a model (right, traced) from one camera, with shadows.
+pub(crate) fn mesh_and_model(
+    mesh: &rbf_mesh::TriMesh,
+    model: &Model<3>,
+    camera: &rbf_render::Camera,
+    style: rbf_render::MeshStyle,
+) -> Result<rbf_render::Image, Failure> {
+    let look = rbf_render::RenderSettings {
+        shadows: true,
+        ..Default::default()
+    };
+    let bad = |e: rbf_render::RenderError| Failure::new(BAD_INPUT, e.to_string());
+    let left = rbf_render::render_mesh(
+        mesh.positions(),
+        mesh.triangles(),
+        camera,
+        style,
+        [0.80, 0.36, 0.18],
+        &look,
+    )
+    .map_err(bad)?;
+    let views = [model.interpolant.view()];
+    let objects = [rbf_render::Object::new(rbf_render::Csg::Model(0), 0)];
+    let (right, _) = rbf_render::render(&views, &objects, camera, &look).map_err(bad)?;
+    rbf_render::Image::side_by_side(&left, &right).map_err(bad)
+}
+
 /// Converts the built-in mesh, polygonizes the result and renders both side by side.
 fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {
     let start = Instant::now();
@@ -85,26 +112,9 @@ fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {
     // The original and the implicit surface from the same camera.
     let (lo, hi) = mesh.bounding_box();
     let camera = rbf_render::Camera::orbit(lo, hi, 215.0, 20.0, 360, 360);
-    let look = rbf_render::RenderSettings {
-        shadows: true,
-        ..Default::default()
-    };
-    let bad = |e: rbf_render::RenderError| Failure::new(BAD_INPUT, e.to_string());
-    let left = rbf_render::render_mesh(
-        mesh.positions(),
-        mesh.triangles(),
-        &camera,
-        rbf_render::MeshStyle::Smooth,
-        [0.80, 0.36, 0.18],
-        &look,
-    )
-    .map_err(bad)?;
-    let views = [model.interpolant.view()];
-    let objects = [rbf_render::Object::new(rbf_render::Csg::Model(0), 0)];
-    let (right, _) = rbf_render::render(&views, &objects, &camera, &look).map_err(bad)?;
-    let png = rbf_render::Image::side_by_side(&left, &right)
-        .and_then(|i| i.to_png())
-        .map_err(bad)?;
+    let png = mesh_and_model(&mesh, &model, &camera, rbf_render::MeshStyle::Smooth)?
+        .to_png()
+        .map_err(|e| Failure::new(BAD_INPUT, e.to_string()))?;
     let png_path = dir.join("spot.png");
     write_atomically(&png_path, &png)?;
     let count = |k| model.constraints.iter().filter(|c| c.kind == k).count();

@@ -287,24 +287,9 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     g.save("fig3-fig6", &cow)?;
     let (lo, hi) = mesh.bounding_box();
     let camera = Camera::orbit(lo, hi, 215.0, 20.0, g.size, g.size);
-    let look = RenderSettings {
-        shadows: true,
-        ..Default::default()
-    };
-    let left = rbf_render::render_mesh(
-        mesh.positions(),
-        mesh.triangles(),
-        &camera,
-        rbf_render::MeshStyle::Flat,
-        [0.8, 0.36, 0.18],
-        &look,
-    )
-    .map_err(bad)?;
-    let views = [cow.interpolant.view()];
-    let (right, _) =
-        render(&views, &[Object::new(Csg::Model(0), 0)], &camera, &look).map_err(bad)?;
+    let image = crate::demo::mesh_and_model(&mesh, &cow, &camera, rbf_render::MeshStyle::Flat)?;
     let facts = json!({"vertices_used": cow.constraints.len(), "surface": g.topology(&cow)?});
-    g.add("fig3-fig6", "Figs. 3 and 6: a polygonal surface (left) and the implicit surface through 800 of its vertices and their normals (right).", &pair(&left, &right)?, facts)?;
+    g.add("fig3-fig6", "Figs. 3 and 6: a polygonal surface (left) and the implicit surface through 800 of its vertices and their normals (right).", &image, facts)?;
     say("fig3-fig6");
 
     // Figure 4: exterior constraints around two, then more, zero-valued constraints.
