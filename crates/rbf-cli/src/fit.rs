@@ -203,6 +203,9 @@ impl Job<'_> {
                 .map_err(|e| Failure::new(BAD_INPUT, format!("{}: {e}", self.source)))?,
         };
         let start = Instant::now();
+        // Too many constraints for memory: say so before the checks, which take time too.
+        rbf_solve::check_constraints_fit(&constraints)
+            .map_err(|e| Failure::fit(self.source, &e))?;
         let system =
             System::new(&constraints, &self.settings).map_err(|e| Failure::fit(self.source, &e))?;
         let spinner = spinner(

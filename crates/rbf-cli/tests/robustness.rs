@@ -138,6 +138,7 @@ fn cases(model: &str) -> Vec<Case> {
         case("dimension 4", text("c.json", r#"{"dim": 4, "constraints": [{"kind": "boundary", "position": [0, 0, 0, 0]}]}"#.into()), &["fit", "c.json", "-o", "o.json"], 2, "dimension 4 is not supported"),
         case("an unknown kernel", text("c.json", r#"{"kernel": "gaussian", "constraints": []}"#.into()), &["fit", "c.json", "-o", "o.json"], 2, "unknown variant `gaussian`"),
         case("a system larger than memory (200 001 rows)", text("c.txt", many), &["fit", "c.txt", "-o", "o.json"], 3, "MiB are available"),
+        case("a constraint file of 10⁷ lines", text("c.txt", (0..10_000_000).map(|i| format!("{} {} {} 0\n", i % 1000, (i / 1000) % 1000, i / 1_000_000)).collect::<String>() + "5.5 5.5 5.5 1\n"), &["fit", "c.txt", "-o", "o.json"], 3, "a system of 10000001 rows needs"),
         eval("a model of another version", "v.json", edited(&|v| v["version"] = 2.into()), "0 0 0\n", "cannot be read; this library reads version 1"),
         eval("not a model file", "v.json", edited(&|v| v["format"] = "something".into()), "0 0 0\n", "is not `rbf-model`"),
         eval("weights and centres of different lengths", "v.json", edited(&|v| { v["weights"].as_array_mut().unwrap().pop(); }), "0 0 0\n", "weights has 4 entries where 5"),
@@ -176,7 +177,7 @@ fn every_catalogued_bad_input_gets_its_documented_answer() {
     assert_eq!(code, 0, "{msg}");
     let model = std::fs::read_to_string(dir.path().join("good.json")).unwrap();
     let cases = cases(&model);
-    assert!(cases.len() >= 40, "{} cases", cases.len());
+    assert!(cases.len() >= 52, "{} cases", cases.len());
     let mut failures = Vec::new();
     for c in &cases {
         let here = tempfile::tempdir().unwrap();

@@ -8,6 +8,7 @@ use rbf_core::{
 };
 
 use crate::lu::FullLu;
+use crate::memory::check_constraints_fit;
 use crate::parallel::par_values;
 use crate::projected::{Attempt, Projected};
 
@@ -70,6 +71,7 @@ pub fn fit<const D: usize>(
     constraints: &[Constraint<D>],
     settings: &FitSettings,
 ) -> Result<Fit<D>, FitError> {
+    check_constraints_fit(constraints)?;
     let system = System::new(constraints, settings)?;
     solve(&system, settings, &SolveOptions::default())
 }

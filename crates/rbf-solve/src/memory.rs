@@ -82,3 +82,21 @@ fn advise_huge_pages<T>(buffer: &mut [T]) {
 
 #[cfg(not(target_os = "linux"))]
 fn advise_huge_pages<T>(_buffer: &mut [T]) {}
+
+/// Refuses, before any checking or assembly, constraints whose system (one row per constraint,
+/// two per normal constraint) could not be held in memory even once.
+///
+/// ```
+/// use rbf_core::Constraint;
+/// let few = [Constraint::boundary([0.0; 3])];
+/// assert!(rbf_solve::check_constraints_fit(&few).is_ok());
+/// ```
+pub fn check_constraints_fit<const D: usize>(
+    constraints: &[rbf_core::Constraint<D>],
+) -> Result<(), FitError> {
+    let normals = constraints
+        .iter()
+        .filter(|c| c.kind == rbf_core::ConstraintKind::Normal)
+        .count();
+    check_fits(constraints.len().saturating_add(normals), 1)
+}
