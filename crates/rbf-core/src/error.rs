@@ -103,7 +103,7 @@ pub enum FitError {
         rows: usize,
         /// Bytes it needs.
         bytes: u64,
-        /// Bytes available, when known.
+        /// Bytes that may be used ([`crate::memory_budget`]), when known.
         available: Option<u64>,
     },
     /// The solve produced non-finite weights: the system is singular.
@@ -133,7 +133,7 @@ struct AvailableNote(Option<u64>);
 impl core::fmt::Display for AvailableNote {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self.0 {
-            Some(a) => write!(f, " but only {} MiB are available", a >> 20),
+            Some(a) => write!(f, " but only {} MiB can be spared", a >> 20),
             None => Ok(()),
         }
     }

@@ -50,7 +50,7 @@ extern crate std;
 #[cfg(feature = "std")]
 mod memory;
 #[cfg(feature = "std")]
-pub use memory::available_memory;
+pub use memory::{available_memory, memory_budget};
 
 mod bound;
 mod kernel;

@@ -13,3 +13,16 @@ pub fn available_memory() -> Option<u64> {
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib.saturating_mul(1024))
 }
+
+/// Bytes that one large allocation may take: [`available_memory`] less a reserve (5 %, and at
+/// least 256 MiB) for the rest of the process and the system. The size checks before dense
+/// systems and volumes compare against this, so that whatever they accept also runs.
+///
+/// ```
+/// if let (Some(budget), Some(available)) = (rbf_core::memory_budget(), rbf_core::available_memory()) {
+///     assert!(budget < available);
+/// }
+/// ```
+pub fn memory_budget() -> Option<u64> {
+    available_memory().map(|a| a.saturating_sub((a / 20).max(256 << 20)))
+}

@@ -118,19 +118,26 @@ fn transform(shape: [usize; 3], cost: &mut [f64], source: &mut [u32]) {
                 (s.f, s.source) = (f, g);
             }
         });
-    let lines: Vec<(Vec<f64>, Vec<u32>)> = (0..ny * nz)
-        .into_par_iter()
-        .map_init(scratch, |s, c| {
-            let mut f: Vec<f64> = (0..nx).map(|i| cost[i * ny * nz + c]).collect();
-            let mut g: Vec<u32> = (0..nx).map(|i| source[i * ny * nz + c]).collect();
-            line(&mut f, &mut g, s);
-            (f, g)
-        })
-        .collect();
-    for (c, (f, g)) in lines.into_iter().enumerate() {
-        for i in 0..nx {
-            cost[i * ny * nz + c] = f[i];
-            source[i * ny * nz + c] = g[i];
+    // Along x, in batches of lines so that the gathered copies stay small.
+    const BATCH: usize = 4096;
+    let columns = ny * nz;
+    for first in (0..columns).step_by(BATCH) {
+        let batch = first..(first + BATCH).min(columns);
+        let lines: Vec<(Vec<f64>, Vec<u32>)> = batch
+            .clone()
+            .into_par_iter()
+            .map_init(scratch, |s, c| {
+                let mut f: Vec<f64> = (0..nx).map(|i| cost[i * columns + c]).collect();
+                let mut g: Vec<u32> = (0..nx).map(|i| source[i * columns + c]).collect();
+                line(&mut f, &mut g, s);
+                (f, g)
+            })
+            .collect();
+        for (c, (f, g)) in batch.zip(lines) {
+            for i in 0..nx {
+                cost[i * columns + c] = f[i];
+                source[i * columns + c] = g[i];
+            }
         }
     }
 }
@@ -157,7 +164,7 @@ pub fn signed_distance(density: &Volume<f32>) -> Volume<f32> {
     let [nx, ny, nz] = density.shape;
     let inside = |d: f32| d >= 0.5;
     let mut cost = vec![f64::INFINITY; density.data.len()];
-    let mut offset = vec![0.0_f64; density.data.len()];
+    let mut offset = vec![0.0_f32; density.data.len()];
     for i in 0..nx {
         for j in 0..ny {
             for k in 0..nz {
@@ -169,7 +176,7 @@ pub fn signed_distance(density: &Volume<f32>) -> Volume<f32> {
                     });
                 if (d > 0.0 && d < 1.0) || edge {
                     cost[at] = 0.0;
-                    offset[at] = (d as f64 - 0.5).clamp(-0.5, 0.5);
+                    offset[at] = (d - 0.5).clamp(-0.5, 0.5);
                 }
             }
         }
@@ -192,7 +199,7 @@ pub fn signed_distance(density: &Volume<f32>) -> Volume<f32> {
             // Inside, the surface lies `offset` beyond the nearest boundary voxel; outside,
             // `offset` short of it.
             let to_seed = c.sqrt();
-            let o = offset[q as usize];
+            let o = f64::from(offset[q as usize]);
             let distance = if inside(d) {
                 to_seed + o
             } else {

@@ -48,6 +48,9 @@ impl Default for VoxelSettings {
     }
 }
 
+/// The peak memory of [`voxelize`] followed by [`crate::signed_distance`], per voxel.
+const BYTES_PER_VOXEL: u64 = 24;
+
 /// The grid a mesh is voxelized on.
 pub fn voxel_grid(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>, MeshError> {
     let (lo, hi) = mesh.bounding_box();
@@ -71,16 +74,17 @@ pub fn voxel_grid(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32
         (((hi[d] - lo[d]) / h).ceil().max(1.0) as usize).saturating_add(m.saturating_mul(2))
     });
     let voxels = shape.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
-    // A volume and its signed distance take about 32 bytes a voxel (densities, distances,
-    // their sources); refuse what the machine cannot hold.
-    let bytes = voxels.map_or(u64::MAX, |v| (v as u64).saturating_mul(32));
-    let available = rbf_core::available_memory();
+    // A volume and its signed distance take at most 24 bytes a voxel (densities, squared
+    // distances, their sources, the surface offsets, the result); refuse what the machine
+    // cannot hold.
+    let bytes = voxels.map_or(u64::MAX, |v| (v as u64).saturating_mul(BYTES_PER_VOXEL));
+    let available = rbf_core::memory_budget();
     if voxels.is_none_or(|v| v > 1 << 33) || available.is_some_and(|a| bytes > a) {
         return Err(MeshError::Invalid(format!(
             "a volume of {shape:?} voxels is too large: it needs about {} MiB{}; use a coarser resolution",
             bytes >> 20,
             available.map_or(String::new(), |a| format!(
-                " but only {} MiB are available",
+                " but only {} MiB can be spared",
                 a >> 20
             ))
         )));

@@ -40,5 +40,5 @@ mod parallel;
 mod projected;
 
 pub use fit::{SolveOptions, Strategy, fit, solve};
-pub use memory::{available_memory, check_constraints_fit, check_fits};
+pub use memory::{available_memory, check_constraints_fit, check_fits, memory_budget};
 pub use parallel::par_values;

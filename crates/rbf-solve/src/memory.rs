@@ -2,17 +2,22 @@
 
 use rbf_core::FitError;
 
-pub use rbf_core::available_memory;
+pub use rbf_core::{available_memory, memory_budget};
 
-/// Refuses a system of `rows` whose dense matrices would take `bytes` when that is more than
-/// the memory available (or more than the address space can hold).
+/// Refuses a system of `rows` rows when `matrices` dense `rows` × `rows` matrices of `f64`
+/// would take more than the [`memory_budget`] (or more than the address space can hold).
+///
+/// ```
+/// assert!(rbf_solve::check_fits(1000, 1).is_ok()); // 8 MB
+/// assert!(rbf_solve::check_fits(10_000_000, 1).is_err()); // 800 TB
+/// ```
 pub fn check_fits(rows: usize, matrices: u64) -> Result<(), FitError> {
     let n = rows as u64;
     let bytes = n
         .saturating_mul(n)
         .saturating_mul(8)
         .saturating_mul(matrices);
-    let available = available_memory();
+    let available = memory_budget();
     let limit = available.unwrap_or(u64::MAX).min(isize::MAX as u64);
     if bytes > limit {
         return Err(FitError::TooLarge {
@@ -38,7 +43,7 @@ pub(crate) fn filled_matrix(
     let too_large = || FitError::TooLarge {
         rows: rows.max(cols),
         bytes: (len as u64).saturating_mul(8),
-        available: available_memory(),
+        available: memory_budget(),
     };
     let mut v: Vec<f64> = Vec::new();
     v.try_reserve_exact(len).map_err(|_| too_large())?;
