@@ -12,6 +12,7 @@ use rbf_mesh::{
     signed_distance, squared_distance_transform, voxelize,
 };
 
+use crate::nearest::VoxelBins;
 use crate::{ConvertError, poisson_subset};
 
 /// Every parameter of the paper, with its value as the default.
@@ -505,11 +506,12 @@ impl Goal {
     /// (its distance to the goal boundary).
     fn errors(&self, inside: &[bool]) -> Vec<(usize, f64, bool)> {
         let current = boundary_voxels(self.shape, inside);
-        let to_current = distance_to(self.shape, &current);
+        let to_current = VoxelBins::new(self.shape, &current).distances(self.shape, &self.boundary);
         let mut errors: Vec<(usize, f64, bool)> = self
             .boundary
             .iter()
-            .map(|&v| (v, to_current[v], true))
+            .zip(to_current)
+            .map(|(&v, d)| (v, d, true))
             .collect();
         errors.extend(current.iter().map(|&v| (v, self.to_boundary[v], false)));
         errors

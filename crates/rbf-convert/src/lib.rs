@@ -24,6 +24,7 @@
 
 mod blend;
 mod iterative;
+mod nearest;
 mod normals;
 mod poisson;
 
