@@ -2,6 +2,7 @@
 
 mod blend;
 mod check;
+mod compare;
 mod completions;
 mod convert;
 mod demo;
@@ -63,6 +64,9 @@ enum Command {
     /// Convert a polygon mesh to an implicit surface model.
     #[command(after_help = convert::HELP)]
     Convert(convert::ConvertArgs),
+    /// Measure how far a model's surface lies from a mesh, both ways (mean, RMS, Hausdorff).
+    #[command(after_help = compare::HELP)]
+    Compare(compare::CompareArgs),
     /// Polygonize a model's surface into a triangle mesh (OBJ, PLY or STL).
     #[command(after_help = mesh::HELP)]
     Mesh(mesh::MeshArgs),
@@ -157,6 +161,7 @@ fn main() -> ExitCode {
         Command::Eval(args) => eval::run(&args),
         Command::Check(args) => check::run(&args),
         Command::Convert(args) => convert::run(&args, cli.quiet, cli.verbose),
+        Command::Compare(args) => compare::run(&args, cli.quiet),
         Command::Mesh(args) => mesh::run(&args, cli.quiet),
         Command::Voxelize(args) => voxelize::run(&args, cli.quiet),
         Command::Render(args) => render::run(&args, cli.quiet, cli.verbose),

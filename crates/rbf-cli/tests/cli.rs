@@ -1046,3 +1046,66 @@ fn verbose_shows_every_iteration_and_conflicts_with_quiet() {
     let o = rbf(&["-q", "-v", "info", out.to_str().unwrap()], None);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }
+
+#[test]
+fn compare_measures_a_sphere_against_a_cube_both_ways() {
+    let dir = tempfile::tempdir().unwrap();
+    // A unit sphere from 200 oriented points spread over it.
+    let points: String = (0..200)
+        .map(|i| {
+            let z = 1.0 - (2.0 * i as f64 + 1.0) / 200.0;
+            let r = (1.0 - z * z).sqrt();
+            let a = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+            let p = [r * a.cos(), r * a.sin(), z];
+            format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2])
+        })
+        .collect();
+    let (model, o) = fit_file(dir.path(), "sphere.txt", &points, &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let cube = write(
+        dir.path(),
+        "cube.obj",
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n\
+         f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n",
+    );
+    let o = rbf(
+        &[
+            "compare",
+            model.to_str().unwrap(),
+            cube.to_str().unwrap(),
+            "--json",
+            "--resolution",
+            "64",
+            "--voxels",
+            "2",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // The cube's corners are √3 − 1 from the sphere; the sphere's points on the cube's
+    // diagonals are 1 − 1/√3 from the cube; the sphere touches the face centres.
+    let m2s = r["mesh_to_surface"]["max"].as_f64().unwrap();
+    let s2m = r["surface_to_mesh"]["max"].as_f64().unwrap();
+    assert!((0.69..0.735).contains(&m2s), "{r}");
+    assert!((0.40..0.425).contains(&s2m), "{r}");
+    assert_eq!(r["hausdorff"].as_f64().unwrap(), m2s);
+    // One voxel of a 2-voxel grid over a cube of side 2 is 1.
+    assert_eq!(r["mesh_to_surface"]["voxels"]["max"].as_f64().unwrap(), m2s);
+    let o = rbf(
+        &["compare", model.to_str().unwrap(), model.to_str().unwrap()],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let o = rbf(
+        &[
+            "compare",
+            model.to_str().unwrap(),
+            cube.to_str().unwrap(),
+            "--samples",
+            "0",
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+}

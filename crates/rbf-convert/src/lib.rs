@@ -23,12 +23,14 @@
 //! ```
 
 mod blend;
+mod compare;
 mod iterative;
 mod nearest;
 mod normals;
 mod poisson;
 
 pub use blend::{BlendReport, blend};
+pub use compare::{CompareSettings, DistanceStats, SurfaceDistance, surface_distance};
 pub use iterative::{IterationReport, IterativeReport, IterativeSettings, convert_iterative};
 pub use normals::{ConvertError, NormalReport, NormalSettings, convert_normals, vertex_normals};
 pub use poisson::poisson_subset;

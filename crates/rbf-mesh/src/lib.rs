@@ -26,6 +26,7 @@ mod hash;
 mod io;
 mod mesh;
 mod polygonize;
+mod sample;
 mod shapes;
 pub(crate) mod volume;
 mod voxelize;
@@ -40,6 +41,7 @@ pub use polygonize::{
     BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, polygonize_continuation,
     polygonize_grid, surface_seeds,
 };
+pub use sample::sample_surface;
 pub use volume::{Volume, classify_blocks, has_other_neighbour};
 pub use voxelize::{VoxelMethod, VoxelSettings, voxel_grid, voxelize};
 pub use winding::{WindingTree, winding_numbers, winding_numbers_exact};
