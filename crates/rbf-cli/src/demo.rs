@@ -117,12 +117,28 @@ fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {
         .map_err(|e| Failure::new(BAD_INPUT, e.to_string()))?;
     let png_path = dir.join("spot.png");
     write_atomically(&png_path, &png)?;
+    let distance = rbf_convert::surface_distance(
+        &model.interpolant.view(),
+        &mesh,
+        &rbf_convert::CompareSettings {
+            samples: 10_000,
+            resolution: 128,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| Failure::new(BAD_INPUT, format!("spot: {e}")))?;
+    let voxel = report.voxel_size;
+    let rms = distance
+        .mesh_to_surface
+        .rms
+        .max(distance.surface_to_mesh.rms);
     let count = |k| model.constraints.iter().filter(|c| c.kind == k).count();
     let check = surface.check();
     say(format!(
         "spot the cow ({} triangles, built in) → implicit surface by the iterative method of Yngve & Turk\n  \
          {} voxels, {} iterations, converted in {converted:.1} s: max error {:.2} voxels, RMS {:.2}\n  \
          {} boundary, {} interior, {} exterior constraints\n  \
+         distance to the mesh, both ways (rbf compare): RMS {:.2} voxels, Hausdorff {:.2} voxels\n  \
          polygonized: {} triangles, {}, genus {}\n  \
          wrote {}, {} and {} (the mesh, left, and its implicit surface, right) in {:.1} s",
         mesh.triangles().len(),
@@ -138,6 +154,8 @@ fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {
         count(rbf_core::ConstraintKind::Boundary),
         count(rbf_core::ConstraintKind::Interior),
         count(rbf_core::ConstraintKind::Exterior),
+        rms / voxel,
+        distance.hausdorff() / voxel,
         check.triangles,
         if check.is_watertight() {
             "watertight"

@@ -339,6 +339,14 @@ fn demo_runs_and_writes_models() {
         errors.contains("max error 1.00") || errors.contains("max error 1.41"),
         "{errors}"
     );
+    // The surfaces themselves: within two voxels everywhere, a third of one on average.
+    let distance = stdout.lines().find(|l| l.contains("Hausdorff")).unwrap();
+    let number_after = |word: &str| -> f64 {
+        let rest = &distance[distance.find(word).unwrap() + word.len()..];
+        rest.split_whitespace().next().unwrap().parse().unwrap()
+    };
+    assert!(number_after("RMS ") < 0.34, "{distance}");
+    assert!(number_after("Hausdorff ") < 2.0, "{distance}");
 }
 
 #[test]
