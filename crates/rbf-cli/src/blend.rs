@@ -7,7 +7,7 @@ use clap::Args;
 use rbf_core::{AnyModel, Model};
 
 use crate::failure::{BAD_INPUT, Failure, USAGE};
-use crate::io::{read_text, write_atomically};
+use crate::io::{read_model, write_atomically};
 
 pub(crate) const HELP: &str = "\
 Each model keeps the constraints that lie outside all the others; one interpolant is fitted
@@ -34,8 +34,7 @@ pub(crate) fn run(args: &BlendArgs, quiet: bool) -> Result<(), Failure> {
     let mut two: Vec<Model<2>> = Vec::new();
     let mut three: Vec<Model<3>> = Vec::new();
     for path in &args.models {
-        let source = path.display().to_string();
-        match AnyModel::from_json(&read_text(path)?).map_err(|e| Failure::file(&source, &e))? {
+        match read_model(path)? {
             AnyModel::Two(m) => two.push(m),
             AnyModel::Three(m) => three.push(m),
         }

@@ -6,12 +6,11 @@ use std::time::Instant;
 
 use clap::Args;
 use rbf_convert::{CompareSettings, DistanceStats, surface_distance};
-use rbf_core::AnyModel;
 use rbf_mesh::read_mesh;
 
 use crate::check::mesh_failure;
 use crate::failure::{BAD_INPUT, Failure, USAGE};
-use crate::io::read_text;
+use crate::io::read_model_3d;
 
 pub(crate) const HELP: &str = "\
 Spreads points by area over the mesh and measures each to the model's surface, then spreads
@@ -48,14 +47,7 @@ pub(crate) struct CompareArgs {
 
 pub(crate) fn run(args: &CompareArgs, quiet: bool) -> Result<(), Failure> {
     let source = args.model.display().to_string();
-    let model =
-        AnyModel::from_json(&read_text(&args.model)?).map_err(|e| Failure::file(&source, &e))?;
-    let AnyModel::Three(model) = model else {
-        return Err(Failure::new(
-            USAGE,
-            format!("{source} is a 2D model: compare works on surfaces in 3D"),
-        ));
-    };
+    let model = read_model_3d(&args.model, "compare")?;
     if args.samples == 0 || args.resolution == 0 || args.voxels == Some(0) {
         return Err(Failure::new(
             USAGE,

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use rbf_core::{AnyModel, Model};
 
 use crate::failure::{BAD_INPUT, Failure};
-use crate::io::read_text;
+use crate::io::{read_model, read_text};
 
 pub(crate) const HELP: &str = "\
 POINTS holds one point per line (x y z, or x y for a 2D model); # starts a comment.
@@ -31,9 +31,7 @@ pub(crate) struct EvalArgs {
 }
 
 pub(crate) fn run(args: &EvalArgs) -> Result<(), Failure> {
-    let source = args.model.display().to_string();
-    let model =
-        AnyModel::from_json(&read_text(&args.model)?).map_err(|e| Failure::file(&source, &e))?;
+    let model = read_model(&args.model)?;
     let text = read_text(&args.points)?;
     match &model {
         AnyModel::Two(m) => eval(m, &text, args),

@@ -7,7 +7,7 @@ use clap::{Args, ValueEnum};
 use rbf_core::{AnyModel, Interpolant};
 
 use crate::failure::Failure;
-use crate::io::{read_text, write_atomically};
+use crate::io::{read_model, write_atomically};
 
 pub(crate) const HELP: &str = "\
 --format rust writes constant arrays and a `const` InterpolantView over them: with rbf-core
@@ -113,8 +113,7 @@ fn rust_source<const D: usize>(
 
 pub(crate) fn run(args: &ExportArgs, quiet: bool) -> Result<(), Failure> {
     let source = args.model.display().to_string();
-    let model =
-        AnyModel::from_json(&read_text(&args.model)?).map_err(|e| Failure::file(&source, &e))?;
+    let model = read_model(&args.model)?;
     let name = args
         .model
         .file_name()

@@ -6,7 +6,7 @@ use clap::Args;
 use rbf_core::{AnyModel, ConstraintKind, Model};
 
 use crate::failure::Failure;
-use crate::io::read_text;
+use crate::io::read_model;
 
 #[derive(Args, Debug)]
 pub(crate) struct InfoArgs {
@@ -52,8 +52,7 @@ fn describe<const D: usize>(m: &Model<D>, file: &str) -> serde_json::Value {
 
 pub(crate) fn run(args: &InfoArgs) -> Result<(), Failure> {
     let source = args.model.display().to_string();
-    let model =
-        AnyModel::from_json(&read_text(&args.model)?).map_err(|e| Failure::file(&source, &e))?;
+    let model = read_model(&args.model)?;
     let v = match &model {
         AnyModel::Two(m) => describe(m, &source),
         AnyModel::Three(m) => describe(m, &source),

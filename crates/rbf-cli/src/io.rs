@@ -17,6 +17,26 @@ pub(crate) fn read_text(path: &Path) -> Result<String, Failure> {
     Ok(text)
 }
 
+/// A model file, either dimension.
+pub(crate) fn read_model(path: &Path) -> Result<rbf_core::AnyModel, Failure> {
+    rbf_core::AnyModel::from_json(&read_text(path)?)
+        .map_err(|e| Failure::file(&path.display().to_string(), &e))
+}
+
+/// A 3D model file; a 2D one is a usage error saying that `command` works on surfaces.
+pub(crate) fn read_model_3d(path: &Path, command: &str) -> Result<rbf_core::Model<3>, Failure> {
+    match read_model(path)? {
+        rbf_core::AnyModel::Three(model) => Ok(model),
+        rbf_core::AnyModel::Two(_) => Err(Failure::new(
+            crate::failure::USAGE,
+            format!(
+                "{} is a 2D model: {command} works on surfaces in 3D (curves are plotted with `rbf plot`)",
+                path.display()
+            ),
+        )),
+    }
+}
+
 /// Writes `bytes` to `path` through a temporary file in the same directory and a rename, so
 /// that an interrupted run never leaves a truncated file behind.
 pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Failure> {

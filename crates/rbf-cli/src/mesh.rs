@@ -4,15 +4,14 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use rbf_core::AnyModel;
 use rbf_mesh::{
     PolygonizeSettings, Resolution, polygonize_continuation, polygonize_grid, surface_seeds,
     write_mesh,
 };
 
 use crate::check::mesh_failure;
-use crate::failure::{BAD_INPUT, Failure, USAGE};
-use crate::io::read_text;
+use crate::failure::{BAD_INPUT, Failure};
+use crate::io::read_model_3d;
 
 pub(crate) const HELP: &str = "\
 Both methods split the cube lattice into tetrahedra (no ambiguous cases), so a closed surface
@@ -54,14 +53,7 @@ enum Method {
 
 pub(crate) fn run(args: &MeshArgs, quiet: bool) -> Result<(), Failure> {
     let source = args.model.display().to_string();
-    let model =
-        AnyModel::from_json(&read_text(&args.model)?).map_err(|e| Failure::file(&source, &e))?;
-    let AnyModel::Three(model) = model else {
-        return Err(Failure::new(
-            USAGE,
-            format!("{source} is a 2D model: curves are plotted, not meshed"),
-        ));
-    };
+    let model = read_model_3d(&args.model, "mesh")?;
     let resolution = match (args.cell_size, args.resolution) {
         (Some(h), _) => Resolution::CellSize(h),
         (None, Some(n)) => Resolution::Cells(n),

@@ -1105,6 +1105,22 @@ fn compare_measures_a_sphere_against_a_cube_both_ways() {
         None,
     );
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let (curve, o) = fit_file(
+        dir.path(),
+        "square.txt",
+        "1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n0 0 1\n",
+        &["--dim", "2"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let curve = curve.to_str().unwrap();
+    for args in [
+        ["compare", curve, cube.to_str().unwrap()],
+        ["mesh", curve, "-o=/dev/null"],
+    ] {
+        let o = rbf(&args, None);
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+        assert!(stderr(&o).contains("is a 2D model"), "{}", stderr(&o));
+    }
     let o = rbf(
         &[
             "compare",
