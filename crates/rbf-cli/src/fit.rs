@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget};
 use rbf_core::{AnyModel, Constraint, ConstraintFile, FitSettings, Model, NormalOffset, System};
-use rbf_solve::{SolveOptions, Strategy};
+use rbf_solve::{GreedySettings, SolveOptions, Strategy};
 
 use crate::KernelArg;
 use crate::failure::{BAD_INPUT, Failure, USAGE};
@@ -29,7 +29,9 @@ Examples:
   rbf fit points.txt -o model.json
   rbf fit curve.txt --dim 2 -o curve.json
   rbf fit scan.json --lambda 1e-4 -o smooth.json
-  rbf fit bunny.json --lambda 1e-3 -o smoother.json   (re-solve a model's constraints)";
+  rbf fit bunny.json --lambda 1e-3 -o smoother.json   (re-solve a model's constraints)
+  rbf fit scan.xyz --greedy --tolerance 1e-4 -o scan.json   (100 000 oriented points: a
+      subset of centres, grown until the surface meets every point within 1e-4 of the box)";
 
 #[derive(Args, Debug)]
 pub(crate) struct FitArgs {
@@ -62,6 +64,20 @@ pub(crate) struct FitArgs {
     /// Factorization of the linear system.
     #[arg(long, value_enum, default_value_t = SolverArg::Auto)]
     solver: SolverArg,
+    /// Fit a subset of the constraints, grown from an even spread by adding the worst-met ones
+    /// until the surface meets every constraint within --tolerance: for sets too large to fit
+    /// whole (scans of 10⁵ points), or to get a smaller model.
+    #[arg(long, conflicts_with = "solver")]
+    greedy: bool,
+    /// With --greedy: the largest miss allowed, |f − h| / |∇f| at every constraint, as a
+    /// fraction of the bounding box's longest side.
+    #[arg(long, value_name = "T", default_value_t = 1e-4, requires = "greedy")]
+    tolerance: f64,
+    /// With --greedy: the most constraints the fit may use (if it needs more, the best fit
+    /// within the budget is written, with a warning).
+    #[arg(long, value_name = "N", default_value_t = 5000, requires = "greedy",
+          value_parser = clap::value_parser!(u64).range(1..))]
+    max_centres: u64,
 }
 
 /// Factorizations by their command-line names.
@@ -147,7 +163,21 @@ pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
         options,
         quiet,
         output: &args.output,
+        greedy: args.greedy.then_some(GreedySettings {
+            tolerance: args.tolerance,
+            max_constraints: usize::try_from(args.max_centres).unwrap_or(usize::MAX),
+            ..Default::default()
+        }),
     };
+    if !(args.tolerance >= 0.0 && args.tolerance.is_finite()) {
+        return Err(Failure::new(
+            USAGE,
+            format!(
+                "--tolerance must be a finite number ≥ 0, not {}",
+                args.tolerance
+            ),
+        ));
+    }
     match dim {
         2 => job.run::<2>(),
         _ => job.run::<3>(),
@@ -190,6 +220,7 @@ struct Job<'a> {
     options: SolveOptions,
     quiet: bool,
     output: &'a std::path::Path,
+    greedy: Option<GreedySettings>,
 }
 
 impl Job<'_> {
@@ -202,6 +233,9 @@ impl Job<'_> {
             Source::Text => rbf_core::parse_constraints(self.text)
                 .map_err(|e| Failure::new(BAD_INPUT, format!("{}: {e}", self.source)))?,
         };
+        if let Some(greedy) = &self.greedy {
+            return self.run_greedy(constraints, greedy);
+        }
         let start = Instant::now();
         // Too many constraints for memory: say so before the checks, which take time too.
         rbf_solve::check_constraints_fit(&constraints)
@@ -233,6 +267,70 @@ impl Job<'_> {
                 model.interpolant.kernel().name(),
                 elapsed.as_secs_f64(),
                 report.method,
+                report.residual,
+                report.condition,
+                self.output.display()
+            );
+        }
+        Ok(())
+    }
+}
+
+impl Job<'_> {
+    /// `--greedy`: a subset of the constraints, grown until all are met.
+    fn run_greedy<const D: usize>(
+        &self,
+        constraints: Vec<Constraint<D>>,
+        greedy: &GreedySettings,
+    ) -> Result<(), Failure> {
+        let start = Instant::now();
+        // The budget of centres must fit in memory (two rows for a normal constraint).
+        rbf_solve::check_fits(
+            greedy
+                .max_constraints
+                .min(constraints.len())
+                .saturating_mul(2),
+            1,
+        )
+        .map_err(|e| Failure::fit(self.source, &e))?;
+        let spinner = spinner(
+            self.quiet,
+            format!("checking {} constraints", constraints.len()),
+        );
+        let result = rbf_solve::fit_greedy(&constraints, &self.settings, greedy, |round| {
+            spinner.set_message(format!(
+                "greedy fit: {} constraints miss by up to {:.1e} of the box",
+                round.constraints, round.max_error
+            ));
+        });
+        spinner.finish_and_clear();
+        let (fit, greedy_report) = result.map_err(|e| Failure::fit(self.source, &e))?;
+        let elapsed = start.elapsed();
+        let report = fit.report;
+        let used: Vec<Constraint<D>> = greedy_report.used.iter().map(|&i| constraints[i]).collect();
+        let model = Model {
+            constraints: used,
+            settings: self.settings,
+            interpolant: fit.interpolant,
+            report: Some(report),
+        };
+        write_atomically(self.output, model.to_json().as_bytes())?;
+        let last = greedy_report.rounds.last().map_or(0.0, |r| r.max_error);
+        if !greedy_report.converged {
+            eprintln!(
+                "rbf: warning: {} constraints still miss by up to {last:.2e} of the box (tolerance {:.1e}); raise --max-centres or --tolerance",
+                model.constraints.len(),
+                greedy.tolerance
+            );
+        }
+        if !self.quiet {
+            eprintln!(
+                "fitted {} of {} constraints greedily ({} rounds; every constraint met within {last:.1e} of the box) in {:.2} s: {} rows, residual {:.1e}, condition ≈ {:.1e}; wrote {}",
+                model.constraints.len(),
+                constraints.len(),
+                greedy_report.rounds.len(),
+                elapsed.as_secs_f64(),
+                report.rows,
                 report.residual,
                 report.condition,
                 self.output.display()

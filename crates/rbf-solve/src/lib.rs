@@ -33,6 +33,7 @@
 //! ```
 
 mod fit;
+mod greedy;
 mod householder;
 mod lu;
 mod memory;
@@ -40,5 +41,6 @@ mod parallel;
 mod projected;
 
 pub use fit::{SolveOptions, Strategy, fit, solve};
+pub use greedy::{GreedyReport, GreedyRound, GreedySettings, fit_greedy};
 pub use memory::{available_memory, check_constraints_fit, check_fits, memory_budget};
 pub use parallel::par_values;

@@ -1,5 +1,6 @@
 //! Integration tests of rbf-solve, in one binary.
 
+mod greedy;
 mod limits;
 mod scipy;
 mod strategies;

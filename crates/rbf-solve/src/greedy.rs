@@ -1,0 +1,307 @@
+//! Greedy fitting: a few of the constraints as centres, enough that the surface meets all of
+//! them within a tolerance (the centre reduction of Carr et al., SIGGRAPH 2001, beyond the
+//! two papers).
+//!
+//! A dense fit of K rows costs K³/3 flops and 8K² bytes, so a scan of 10⁵ oriented points
+//! cannot be fitted whole on this machine. Most of those constraints say again what their
+//! neighbours already say: the greedy fit starts from an evenly spread subset, measures how far
+//! the surface misses every constraint, adds the worst ones and fits again, until every
+//! constraint is met within the tolerance or the budget of centres is spent.
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+use rbf_core::{Constraint, ConstraintKind, Fit, FitError, FitSettings, Interpolant, System};
+
+use crate::fit;
+
+/// Settings of [`fit_greedy`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GreedySettings {
+    /// Constraints of the first fit, spread by farthest-point sampling: 100.
+    pub initial: usize,
+    /// Stop when the surface misses no constraint by more than this fraction of the bounding
+    /// box's longest side: 1e-4. A constraint's miss is |f(x) − h| / |∇f(x)|, the distance to
+    /// the level set it asks for (to first order), largest over its rows.
+    pub tolerance: f64,
+    /// The most constraints the fit may use: 5000.
+    pub max_constraints: usize,
+    /// Each round adds the worst-met constraints, up to this fraction of the current count:
+    /// 0.5.
+    pub growth: f64,
+}
+
+impl Default for GreedySettings {
+    fn default() -> Self {
+        Self {
+            initial: 100,
+            tolerance: 1e-4,
+            max_constraints: 5000,
+            growth: 0.5,
+        }
+    }
+}
+
+/// The figures of one round.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GreedyRound {
+    /// Constraints in this round's fit.
+    pub constraints: usize,
+    /// The largest miss over all constraints, as a fraction of the box's longest side.
+    pub max_error: f64,
+    /// Seconds fitting.
+    pub fit_seconds: f64,
+    /// Seconds measuring the misses.
+    pub evaluate_seconds: f64,
+}
+
+/// What [`fit_greedy`] did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GreedyReport {
+    /// Every round, in order.
+    pub rounds: Vec<GreedyRound>,
+    /// Indices (into the input) of the constraints the returned fit uses, in the order given.
+    pub used: Vec<usize>,
+    /// Whether every constraint is met within the tolerance.
+    pub converged: bool,
+}
+
+/// Fits a subset of `constraints` chosen greedily so that the surface meets every one of them
+/// within `greedy.tolerance` (see [`GreedySettings`]). Every constraint is checked first, as by
+/// [`fit`]; normal constraints keep the offset the whole set gives them. The fit uses
+/// [`GreedyReport::used`]; with a tolerance of 0 and room for all, it is the full fit.
+///
+/// ```
+/// use rbf_core::{Constraint, FitSettings};
+/// use rbf_solve::{GreedySettings, fit_greedy};
+/// // 2000 oriented points on a unit sphere.
+/// let cs: Vec<Constraint<3>> = (0..2000)
+///     .map(|i| {
+///         let z = 1.0 - (2.0 * i as f64 + 1.0) / 2000.0;
+///         let (r, a) = ((1.0 - z * z).sqrt(), i as f64 * 2.399963);
+///         let p = [r * a.cos(), r * a.sin(), z];
+///         Constraint::normal(p, p)
+///     })
+///     .collect();
+/// let (fit, report) = fit_greedy(&cs, &FitSettings::default(), &GreedySettings::default(), |_| {}).unwrap();
+/// assert!(report.converged && report.used.len() < 1000);
+/// assert!(fit.interpolant.value(&[0.0, 0.0, 1.0]).abs() < 1e-3);
+/// ```
+pub fn fit_greedy<const D: usize>(
+    constraints: &[Constraint<D>],
+    settings: &FitSettings,
+    greedy: &GreedySettings,
+    mut progress: impl FnMut(&GreedyRound),
+) -> Result<(Fit<D>, GreedyReport), FitError> {
+    let system = System::new(constraints, settings)?;
+    let constraints = with_offsets(constraints, &system);
+    let longest = longest_side(system.points());
+    let tolerance = greedy.tolerance.max(0.0) * longest;
+    let budget = greedy.max_constraints.clamp(1, constraints.len());
+    let mut used = spread(&constraints, greedy.initial.clamp(1, budget));
+    let mut rounds = Vec::new();
+    loop {
+        let t = Instant::now();
+        let subset: Vec<Constraint<D>> = used.iter().map(|&i| constraints[i]).collect();
+        let fit = fit(&subset, settings)?;
+        let fit_seconds = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let misses = misses(&fit.interpolant, &system, constraints.len());
+        let max = misses.iter().copied().fold(0.0, f64::max);
+        let round = GreedyRound {
+            constraints: used.len(),
+            max_error: max / longest,
+            fit_seconds,
+            evaluate_seconds: t.elapsed().as_secs_f64(),
+        };
+        progress(&round);
+        rounds.push(round);
+        let converged = max <= tolerance;
+        let room = budget.saturating_sub(used.len());
+        if converged || room == 0 {
+            return Ok((
+                fit,
+                GreedyReport {
+                    rounds,
+                    used,
+                    converged,
+                },
+            ));
+        }
+        let mut taken = vec![false; constraints.len()];
+        for &i in &used {
+            taken[i] = true;
+        }
+        let mut worst: Vec<usize> = (0..constraints.len())
+            .filter(|&i| !taken[i] && misses[i] > tolerance)
+            .collect();
+        worst.sort_unstable_by(|&a, &b| misses[b].total_cmp(&misses[a]));
+        let add = ((used.len() as f64 * greedy.growth).ceil() as usize).clamp(1, room);
+        // The worst-met constraints crowd together where the surface is worst; taking them
+        // all would spend the round on a few places. Keep picks half the centres' spacing apart.
+        let positions: Vec<[f64; D]> = used.iter().map(|&i| constraints[i].position).collect();
+        let apart = 0.5 * mean_spacing(&positions);
+        let mut picks = Spread::new(apart);
+        worst.retain(|&i| picks.len() < add && picks.insert(constraints[i].position));
+        used.extend(worst);
+        used.sort_unstable();
+    }
+}
+
+/// The constraints with every normal constraint's offset made explicit, as the whole set
+/// gives it, so that a subset keeps the same offset points.
+fn with_offsets<const D: usize>(
+    constraints: &[Constraint<D>],
+    system: &System<D>,
+) -> Vec<Constraint<D>> {
+    let points = system.points();
+    let mut out = constraints.to_vec();
+    for (row, source) in system.sources().iter().enumerate() {
+        if source.offset_point {
+            let c = &mut out[source.constraint];
+            let d = (0..D)
+                .map(|k| (points[row][k] - c.position[k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            c.offset = Some(d);
+        }
+    }
+    out
+}
+
+fn longest_side<const D: usize>(points: &[[f64; D]]) -> f64 {
+    let mut lo = [f64::INFINITY; D];
+    let mut hi = [f64::NEG_INFINITY; D];
+    for p in points {
+        for d in 0..D {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    (0..D).map(|d| hi[d] - lo[d]).fold(0.0, f64::max)
+}
+
+/// `count` constraints spread by farthest-point sampling from the first, plus the first
+/// constraint that gives f a non-zero value if none of those does (a fit needs one).
+fn spread<const D: usize>(constraints: &[Constraint<D>], count: usize) -> Vec<usize> {
+    let distance2 = |a: &[f64; D], b: &[f64; D]| (0..D).map(|d| (a[d] - b[d]).powi(2)).sum::<f64>();
+    let mut nearest = vec![f64::INFINITY; constraints.len()];
+    let mut chosen = Vec::with_capacity(count + 1);
+    let mut next = 0;
+    while chosen.len() < count {
+        chosen.push(next);
+        let at = constraints[next].position;
+        let (far, _) = nearest
+            .par_iter_mut()
+            .zip(constraints.par_iter())
+            .enumerate()
+            .map(|(i, (n, c))| {
+                *n = n.min(distance2(&c.position, &at));
+                (i, *n)
+            })
+            .reduce(|| (0, -1.0), |a, b| if b.1 > a.1 { b } else { a });
+        if nearest[far] <= 0.0 {
+            break;
+        }
+        next = far;
+    }
+    let gives_value = |c: &Constraint<D>| c.kind == ConstraintKind::Normal || c.value != 0.0;
+    if !chosen.iter().any(|&i| gives_value(&constraints[i]))
+        && let Some(i) = constraints.iter().position(gives_value)
+    {
+        chosen.push(i);
+    }
+    chosen.sort_unstable();
+    chosen
+}
+
+/// The mean distance from each point to its nearest neighbour among them.
+fn mean_spacing<const D: usize>(points: &[[f64; D]]) -> f64 {
+    if points.len() < 2 {
+        return 0.0;
+    }
+    let total: f64 = points
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            points
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .map(|(_, q)| (0..D).map(|d| (p[d] - q[d]).powi(2)).sum::<f64>())
+                .fold(f64::INFINITY, f64::min)
+                .sqrt()
+        })
+        .sum();
+    total / points.len() as f64
+}
+
+/// Points kept at least `apart` from each other, in a hash grid of that cell size.
+struct Spread<const D: usize> {
+    apart: f64,
+    cells: std::collections::HashMap<[i64; D], Vec<[f64; D]>>,
+    count: usize,
+}
+
+impl<const D: usize> Spread<D> {
+    fn new(apart: f64) -> Self {
+        Self {
+            apart,
+            cells: std::collections::HashMap::new(),
+            count: 0,
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Adds `p` unless a point already kept lies nearer than `apart`; says whether it did.
+    fn insert(&mut self, p: [f64; D]) -> bool {
+        if self.apart > 0.0 && self.apart.is_finite() {
+            let cell: [i64; D] = core::array::from_fn(|d| (p[d] / self.apart).floor() as i64);
+            let near = (0..3usize.pow(D as u32)).any(|n| {
+                let key: [i64; D] =
+                    core::array::from_fn(|d| cell[d] + (n / 3usize.pow(d as u32) % 3) as i64 - 1);
+                self.cells.get(&key).is_some_and(|ps| {
+                    ps.iter().any(|q| {
+                        (0..D).map(|d| (p[d] - q[d]).powi(2)).sum::<f64>() < self.apart * self.apart
+                    })
+                })
+            });
+            if near {
+                return false;
+            }
+            self.cells.entry(cell).or_default().push(p);
+        }
+        self.count += 1;
+        true
+    }
+}
+
+/// Each constraint's miss: the largest |f − h| / |∇f| over its rows.
+fn misses<const D: usize>(f: &Interpolant<f64, D>, system: &System<D>, count: usize) -> Vec<f64> {
+    const CHUNK: usize = 512;
+    let view = f.view();
+    let points = system.points();
+    let per_row: Vec<f64> = points
+        .par_chunks(CHUNK)
+        .zip(system.values().par_chunks(CHUNK))
+        .flat_map_iter(|(p, h)| {
+            let mut v = vec![0.0; p.len()];
+            let mut g = vec![[0.0; D]; p.len()];
+            let _ = view.values_and_gradients(p, &mut v, &mut g);
+            v.into_iter().zip(g).zip(h).map(|((v, g), h)| {
+                let slope = g.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let miss = (v - h).abs();
+                if miss == 0.0 { 0.0 } else { miss / slope }
+            })
+        })
+        .collect();
+    let mut out = vec![0.0_f64; count];
+    for (row, source) in system.sources().iter().enumerate() {
+        let m = &mut out[source.constraint];
+        *m = m.max(per_row[row]);
+    }
+    out
+}

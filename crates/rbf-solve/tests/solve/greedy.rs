@@ -1,0 +1,148 @@
+//! Greedy fitting: every constraint met within the tolerance, checked here independently of
+//! the report; the full fit when nothing may be left out; bad input named as by `fit`.
+
+use rbf_core::{Constraint, FitError, FitSettings, Interpolant};
+use rbf_solve::{GreedySettings, fit, fit_greedy};
+
+/// `n` oriented points on a bumpy sphere (normals of the unit sphere, which is all the fit
+/// needs: it interpolates them).
+fn bumpy(n: usize) -> Vec<Constraint<3>> {
+    (0..n)
+        .map(|i| {
+            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
+            let (r, a) = ((1.0 - z * z).sqrt(), i as f64 * 2.399963229728653);
+            let u = [r * a.cos(), r * a.sin(), z];
+            let s = 1.0 + 0.15 * (3.0 * u[0]).sin() * (2.0 * u[1]).cos();
+            Constraint::normal(u.map(|x| s * x), u)
+        })
+        .collect()
+}
+
+/// The largest |f − h| / |∇f| over every row of the constraints, as a fraction of the box.
+fn worst_miss(f: &Interpolant<f64, 3>, cs: &[Constraint<3>]) -> f64 {
+    let system = rbf_core::System::new(cs, &FitSettings::default()).unwrap();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in system.points() {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    let longest = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    system
+        .points()
+        .iter()
+        .zip(system.values())
+        .map(|(p, h)| {
+            let (v, g) = f.value_and_gradient(p);
+            (v - h).abs() / (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt() / longest
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn every_constraint_is_met_within_the_tolerance_with_a_fraction_of_them() {
+    let cs = bumpy(6000);
+    for tolerance in [1e-3, 1e-4] {
+        let settings = GreedySettings {
+            tolerance,
+            ..Default::default()
+        };
+        let (f, report) = fit_greedy(&cs, &FitSettings::default(), &settings, |_| {}).unwrap();
+        assert!(report.converged, "{tolerance}: {report:?}");
+        assert!(report.used.len() < cs.len() / 10, "{}", report.used.len());
+        let miss = worst_miss(&f.interpolant, &cs);
+        assert!(miss <= tolerance, "{tolerance}: missed by {miss}");
+        // The report's own figure agrees with the independent one.
+        let last = report.rounds.last().unwrap();
+        assert!(
+            (last.max_error - miss).abs() <= 1e-3 * tolerance,
+            "{last:?} vs {miss}"
+        );
+        assert_eq!(last.constraints, report.used.len());
+    }
+    // Without the greedy loop, the first subset alone misses by far more.
+    let (f, _) = fit_greedy(
+        &cs,
+        &FitSettings::default(),
+        &GreedySettings {
+            max_constraints: 100,
+            ..Default::default()
+        },
+        |_| {},
+    )
+    .unwrap();
+    assert!(worst_miss(&f.interpolant, &cs) > 1e-3);
+}
+
+#[test]
+fn with_no_tolerance_and_room_for_all_it_is_the_full_fit() {
+    let cs = bumpy(300);
+    let settings = GreedySettings {
+        tolerance: 0.0,
+        initial: 20,
+        max_constraints: usize::MAX,
+        ..Default::default()
+    };
+    let (g, report) = fit_greedy(&cs, &FitSettings::default(), &settings, |_| {}).unwrap();
+    assert_eq!(report.used, (0..300).collect::<Vec<_>>());
+    assert!(report.rounds.len() > 3, "{report:?}");
+    let full = fit(&cs, &FitSettings::default()).unwrap();
+    for p in [[0.0, 0.0, 0.0], [0.3, -0.2, 0.9], [1.5, 0.0, 0.0]] {
+        let (a, b) = (g.interpolant.value(&p), full.interpolant.value(&p));
+        assert!((a - b).abs() < 1e-8 * a.abs().max(1.0), "{a} vs {b}");
+    }
+}
+
+#[test]
+fn a_lone_interior_constraint_is_always_in_the_first_subset() {
+    // Boundary constraints only, but for the centre: the spread subset would miss it, and a
+    // fit of boundary constraints alone is f ≡ 0.
+    let mut cs: Vec<Constraint<3>> = bumpy(500)
+        .into_iter()
+        .map(|c| Constraint::boundary(c.position))
+        .collect();
+    cs.push(Constraint::interior([0.0; 3], 1.0));
+    let (f, report) = fit_greedy(
+        &cs,
+        &FitSettings::default(),
+        &GreedySettings::default(),
+        |_| {},
+    )
+    .unwrap();
+    assert!(report.used.contains(&500));
+    assert!(f.interpolant.value(&[0.0; 3]) > 0.5);
+}
+
+#[test]
+fn bad_constraints_are_named_before_any_fit() {
+    let mut cs = bumpy(200);
+    cs[117].position[1] = f64::NAN;
+    let e = fit_greedy(
+        &cs,
+        &FitSettings::default(),
+        &GreedySettings::default(),
+        |_| {},
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            FitError::NonFinite {
+                constraint: 117,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let mut cs = bumpy(200);
+    cs[150].position = cs[3].position;
+    let e = fit_greedy(
+        &cs,
+        &FitSettings::default(),
+        &GreedySettings::default(),
+        |_| {},
+    )
+    .unwrap_err();
+    assert!(matches!(e, FitError::Coincident { .. }), "{e}");
+}
