@@ -92,10 +92,10 @@ pub fn torus_and_ball(m: usize) -> rbf_mesh::Volume<f32> {
     v
 }
 
-/// A torus of `n` oriented points (3000 rows for n = 1500), fitted.
-pub fn torus_model(n: usize) -> Model<3> {
+/// `n` oriented points spread over a torus (tube radius 0.35 about a circle of radius 1).
+pub fn torus_points(n: usize) -> Vec<Constraint<3>> {
     let golden = (5f64.sqrt() - 1.0) / 2.0;
-    let cs: Vec<Constraint<3>> = (0..n)
+    (0..n)
         .map(|i| {
             let u = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
             let v = std::f64::consts::TAU * (i as f64 * golden).fract();
@@ -107,7 +107,12 @@ pub fn torus_model(n: usize) -> Model<3> {
             ];
             Constraint::normal(p, normal)
         })
-        .collect();
+        .collect()
+}
+
+/// A torus of `n` oriented points (3000 rows for n = 1500), fitted.
+pub fn torus_model(n: usize) -> Model<3> {
+    let cs = torus_points(n);
     let settings = FitSettings::default();
     let fit = rbf_solve::fit(&cs, &settings).expect("the torus fits");
     Model {

@@ -1133,3 +1133,51 @@ fn compare_measures_a_sphere_against_a_cube_both_ways() {
     );
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }
+
+#[test]
+fn greedy_fit_uses_few_of_many_points_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 3000;
+    let points: String = (0..n)
+        .map(|i| {
+            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
+            let r = (1.0 - z * z).sqrt();
+            let a = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+            let p = [r * a.cos(), r * a.sin(), z];
+            format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2])
+        })
+        .collect();
+    let (model, o) = fit_file(dir.path(), "scan.txt", &points, &["--greedy"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!("of {n} constraints greedily")),
+        "{}",
+        stderr(&o)
+    );
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&model).unwrap()).unwrap();
+    let used = m["constraints"].as_array().unwrap().len();
+    assert!((10..n / 5).contains(&used), "{used}");
+    // A budget too small for the tolerance: the best fit within it, and a warning.
+    let (_, o) = fit_file(
+        dir.path(),
+        "scan.txt",
+        &points,
+        &["--greedy", "--tolerance", "1e-9", "--max-centres", "50"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("warning: 50 constraints still miss"),
+        "{}",
+        stderr(&o)
+    );
+    for bad in [
+        &["--tolerance", "1e-3"][..],
+        &["--greedy", "--tolerance", "-1"],
+        &["--greedy", "--max-centres", "0"],
+        &["--greedy", "--solver", "lu"],
+    ] {
+        let (_, o) = fit_file(dir.path(), "scan.txt", &points, bad);
+        assert_eq!(o.status.code(), Some(1), "{bad:?}: {}", stderr(&o));
+    }
+}
