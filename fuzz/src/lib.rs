@@ -118,6 +118,13 @@ pub fn fit(data: &[u8]) {
     };
     let _ = rbf_core::fit(&constraints, &settings);
     let _ = rbf_solve::fit(&constraints, &settings);
+    // Greedily, from a subset of four grown two at a time.
+    let greedy = rbf_solve::GreedySettings {
+        initial: 4,
+        max_constraints: 12,
+        ..Default::default()
+    };
+    let _ = rbf_solve::fit_greedy(&constraints, &settings, &greedy, |_| {});
 }
 
 /// An arbitrary model (centres, weights, affine part) evaluated at arbitrary points, one at a

@@ -71,7 +71,13 @@ pub(crate) struct FitArgs {
     greedy: bool,
     /// With --greedy: the largest miss allowed, |f − h| / |∇f| at every constraint, as a
     /// fraction of the bounding box's longest side.
-    #[arg(long, value_name = "T", default_value_t = 1e-4, requires = "greedy")]
+    #[arg(
+        long,
+        value_name = "T",
+        default_value_t = 1e-4,
+        requires = "greedy",
+        allow_hyphen_values = true
+    )]
     tolerance: f64,
     /// With --greedy: the most constraints the fit may use (if it needs more, the best fit
     /// within the budget is written, with a warning).

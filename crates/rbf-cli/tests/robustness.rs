@@ -166,7 +166,31 @@ fn cases(model: &str) -> Vec<Case> {
         case("a missing input file", vec![], &["fit", "none.txt", "-o", "o.json"], 2, "none.txt: No such file"),
         case("an output in a missing directory", text("c.txt", tet.clone()), &["fit", "c.txt", "-o", "no/such/dir/o.json"], 2, "no/such/dir/o.json"),
         case("an unknown option", vec![], &["fit", "--colour", "red"], 1, "unexpected argument"),
+        case("10⁵ oriented points, greedily (a 320 GB system whole)", text("c.txt", torus_points(100_000)), &["fit", "c.txt", "-o", "o.json", "--greedy"], 0, "of 100000 constraints greedily"),
+        case("a negative greedy tolerance", text("c.txt", tet.clone()), &["fit", "c.txt", "-o", "o.json", "--greedy", "--tolerance", "-1"], 1, "--tolerance must be a finite number ≥ 0"),
+        case("comparing with a mesh of no area", [text("good.json", model.into()), text("m.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n".into())].concat(), &["compare", "good.json", "m.obj"], 2, "no area"),
     ]
+}
+
+/// `n` oriented points spread over a torus, one `x y z nx ny nz` line each.
+fn torus_points(n: usize) -> String {
+    let golden = (5f64.sqrt() - 1.0) / 2.0;
+    (0..n)
+        .map(|i| {
+            let u = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
+            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
+            let (c, s) = (v.cos(), v.sin());
+            format!(
+                "{} {} {} {} {} {}\n",
+                (1.0 + 0.35 * c) * u.cos(),
+                (1.0 + 0.35 * c) * u.sin(),
+                0.35 * s,
+                c * u.cos(),
+                c * u.sin(),
+                s
+            )
+        })
+        .collect()
 }
 
 #[test]
@@ -177,7 +201,7 @@ fn every_catalogued_bad_input_gets_its_documented_answer() {
     assert_eq!(code, 0, "{msg}");
     let model = std::fs::read_to_string(dir.path().join("good.json")).unwrap();
     let cases = cases(&model);
-    assert!(cases.len() >= 52, "{} cases", cases.len());
+    assert!(cases.len() >= 55, "{} cases", cases.len());
     let mut failures = Vec::new();
     for c in &cases {
         let here = tempfile::tempdir().unwrap();
