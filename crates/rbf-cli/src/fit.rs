@@ -313,9 +313,8 @@ impl Job<'_> {
         let (fit, greedy_report) = result.map_err(|e| Failure::fit(self.source, &e))?;
         let elapsed = start.elapsed();
         let report = fit.report;
-        let used: Vec<Constraint<D>> = greedy_report.used.iter().map(|&i| constraints[i]).collect();
         let model = Model {
-            constraints: used,
+            constraints: greedy_report.constraints,
             settings: self.settings,
             interpolant: fit.interpolant,
             report: Some(report),

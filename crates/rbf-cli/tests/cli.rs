@@ -1158,6 +1158,9 @@ fn greedy_fit_uses_few_of_many_points_and_says_so() {
         serde_json::from_str(&std::fs::read_to_string(&model).unwrap()).unwrap();
     let used = m["constraints"].as_array().unwrap().len();
     assert!((10..n / 5).contains(&used), "{used}");
+    // The model reads back (its normal constraints keep the offsets they were fitted with).
+    let o = rbf(&["info", model.to_str().unwrap()], None);
+    assert!(o.status.success(), "{}", stderr(&o));
     // A budget too small for the tolerance: the best fit within it, and a warning.
     let (_, o) = fit_file(
         dir.path(),

@@ -57,11 +57,14 @@ pub struct GreedyRound {
 
 /// What [`fit_greedy`] did.
 #[derive(Clone, Debug, PartialEq)]
-pub struct GreedyReport {
+pub struct GreedyReport<const D: usize> {
     /// Every round, in order.
     pub rounds: Vec<GreedyRound>,
     /// Indices (into the input) of the constraints the returned fit uses, in the order given.
     pub used: Vec<usize>,
+    /// Those constraints as fitted: a normal constraint carries the offset that the whole set
+    /// gave it (explicitly, so that a model of these constraints alone reproduces the fit).
+    pub constraints: Vec<Constraint<D>>,
     /// Whether every constraint is met within the tolerance.
     pub converged: bool,
 }
@@ -69,7 +72,8 @@ pub struct GreedyReport {
 /// Fits a subset of `constraints` chosen greedily so that the surface meets every one of them
 /// within `greedy.tolerance` (see [`GreedySettings`]). Every constraint is checked first, as by
 /// [`fit`]; normal constraints keep the offset the whole set gives them. The fit uses
-/// [`GreedyReport::used`]; with a tolerance of 0 and room for all, it is the full fit.
+/// [`GreedyReport::constraints`] (the input's [`GreedyReport::used`]); with a tolerance of 0
+/// and room for all, it is the full fit.
 ///
 /// ```
 /// use rbf_core::{Constraint, FitSettings};
@@ -92,7 +96,7 @@ pub fn fit_greedy<const D: usize>(
     settings: &FitSettings,
     greedy: &GreedySettings,
     mut progress: impl FnMut(&GreedyRound),
-) -> Result<(Fit<D>, GreedyReport), FitError> {
+) -> Result<(Fit<D>, GreedyReport<D>), FitError> {
     let system = System::new(constraints, settings)?;
     let constraints = with_offsets(constraints, &system);
     let longest = longest_side(system.points());
@@ -124,6 +128,7 @@ pub fn fit_greedy<const D: usize>(
                 GreedyReport {
                     rounds,
                     used,
+                    constraints: subset,
                     converged,
                 },
             ));

@@ -146,3 +146,26 @@ fn bad_constraints_are_named_before_any_fit() {
     .unwrap_err();
     assert!(matches!(e, FitError::Coincident { .. }), "{e}");
 }
+
+#[test]
+fn a_model_of_the_constraints_used_reads_back_as_the_same_function() {
+    // The subset's own bounding box is smaller than the whole set's, so its default normal
+    // offset would differ: the report's constraints carry the offsets they were fitted with.
+    let cs = bumpy(2000);
+    let settings = FitSettings::default();
+    let (fit, report) = fit_greedy(&cs, &settings, &GreedySettings::default(), |_| {}).unwrap();
+    assert_eq!(report.constraints.len(), report.used.len());
+    let model = rbf_core::Model {
+        constraints: report.constraints,
+        settings,
+        interpolant: fit.interpolant,
+        report: Some(fit.report),
+    };
+    let rbf_core::AnyModel::Three(back) = rbf_core::AnyModel::from_json(&model.to_json()).unwrap()
+    else {
+        panic!("a 3D model reads back as 3D");
+    };
+    for p in [[0.0, 0.0, 0.0], [0.5, 0.5, 0.5], [2.0, 0.0, 0.0]] {
+        assert_eq!(back.interpolant.value(&p), model.interpolant.value(&p));
+    }
+}
