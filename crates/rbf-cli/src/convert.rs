@@ -13,7 +13,7 @@ use rbf_core::NormalOffset;
 use rbf_mesh::read_mesh;
 
 use crate::check::mesh_failure;
-use crate::failure::{BAD_INPUT, Failure};
+use crate::failure::{BAD_INPUT, Failure, USAGE};
 use crate::io::write_atomically;
 
 pub(crate) const HELP: &str = "\
@@ -25,12 +25,14 @@ are placed. The best model seen is written; --report writes every iteration's fi
 
 --method normals (Turk & O'Brien, §4.3): every vertex becomes a boundary constraint with a normal
 constraint a small distance inside, against the vertex normal; meshes with more vertices than
---max-constraints are thinned to an evenly spread subset first.
+--max-constraints are thinned to an evenly spread subset first, or with --tolerance T the
+vertices are chosen greedily until the surface meets every vertex within T of the box.
 
 Examples:
   rbf convert bunny.obj -o bunny.json
   rbf convert bunny.obj -o bunny.json --resolution 220 --report bunny-report.json
   rbf convert scan.ply -o scan.json --method normals --max-constraints 2000
+  rbf convert scan.ply -o scan.json --method normals --tolerance 1e-4
   rbf mesh bunny.json -o smooth_bunny.obj";
 
 #[derive(Args, Debug)]
@@ -61,6 +63,10 @@ pub(crate) struct ConvertArgs {
     /// Normal constraint offset as a fraction of the bounding box's longest side (normals).
     #[arg(long, value_name = "F", default_value_t = 0.01)]
     offset: f64,
+    /// Choose the vertices greedily until the surface meets every one within this fraction of
+    /// the bounding box's longest side (normals).
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    tolerance: Option<f64>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -85,17 +91,34 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                 offset: NormalOffset::Relative(args.offset),
                 max_vertices: args.max_constraints.unwrap_or(4000),
                 lambda: args.lambda,
+                tolerance: args.tolerance,
             };
+            if let Some(t) = args.tolerance
+                && !(t >= 0.0 && t.is_finite())
+            {
+                return Err(Failure::new(
+                    USAGE,
+                    format!("--tolerance must be a finite number ≥ 0, not {t}"),
+                ));
+            }
             let spinner = crate::fit::spinner(quiet, "fitting normal constraints".into());
             let result = convert_normals(&mesh, &settings);
             spinner.finish_and_clear();
             let (model, report) = result.map_err(failure)?;
             write_atomically(&args.output, model.to_json().as_bytes())?;
+            if let Some((worst, false)) = report.greedy {
+                eprintln!(
+                    "rbf: warning: {} vertices still miss by up to {worst:.2e} of the box; raise --max-constraints or --tolerance",
+                    report.vertices_used
+                );
+            }
             if !quiet {
-                let thinned = if report.thinned {
-                    " (thinned evenly)"
-                } else {
-                    ""
+                let thinned = match report.greedy {
+                    Some((worst, _)) => {
+                        format!(" (chosen greedily: every vertex within {worst:.1e} of the box)")
+                    }
+                    None if report.thinned => " (thinned evenly)".into(),
+                    None => String::new(),
                 };
                 eprintln!(
                     "{} of {} vertices used{thinned}, {} without a normal; {} rows, residual {:.1e}, condition ≈ {:.1e}; {:.2} s; wrote {}",

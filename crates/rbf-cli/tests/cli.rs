@@ -552,6 +552,24 @@ fn convert_then_mesh_keeps_the_genus() {
         "{}",
         stderr(&o)
     );
+    // Vertices chosen greedily to a tolerance; the model reads back.
+    let o = rbf(
+        &[
+            "convert",
+            torus,
+            "-o",
+            model.to_str().unwrap(),
+            "--method",
+            "normals",
+            "--tolerance",
+            "1e-3",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("chosen greedily"), "{}", stderr(&o));
+    let o = rbf(&["info", model.to_str().unwrap()], None);
+    assert!(o.status.success(), "{}", stderr(&o));
     let bad = write(
         dir.path(),
         "flat.obj",

@@ -16,6 +16,11 @@ pub struct NormalSettings {
     pub max_vertices: usize,
     /// Regularization λ of the fit.
     pub lambda: f64,
+    /// Instead of an even spread, choose vertices greedily (`rbf_solve::fit_greedy`) until
+    /// the surface meets every vertex, and the offset point of its normal constraint, within
+    /// this fraction of the bounding box's longest side, using at most `max_vertices`. None
+    /// (an even spread) by default.
+    pub tolerance: Option<f64>,
 }
 
 impl Default for NormalSettings {
@@ -24,6 +29,7 @@ impl Default for NormalSettings {
             offset: NormalOffset::Relative(0.01),
             max_vertices: 4000,
             lambda: 0.0,
+            tolerance: None,
         }
     }
 }
@@ -37,8 +43,11 @@ pub struct NormalReport {
     pub vertices_used: usize,
     /// Vertices skipped because their normal has zero length (e.g. on a fold).
     pub without_normal: usize,
-    /// Whether the vertices were thinned to `max_vertices`.
+    /// Whether the vertices were thinned (to an even spread of `max_vertices`, or greedily).
     pub thinned: bool,
+    /// With a tolerance: the largest miss over every vertex's constraint, as a fraction of the
+    /// box's longest side, and whether it is within the tolerance.
+    pub greedy: Option<(f64, bool)>,
     /// The fit's residual and condition estimate.
     pub fit: rbf_core::FitReport,
 }
@@ -99,26 +108,45 @@ pub fn convert_normals(
     if candidates.is_empty() {
         return Err(ConvertError::NoNormals);
     }
-    let points: Vec<[f64; 3]> = candidates.iter().map(|&v| mesh.positions()[v]).collect();
-    let chosen = poisson_subset(&points, settings.max_vertices);
-    let constraints: Vec<Constraint<3>> = chosen
-        .iter()
-        .map(|&i| {
-            let v = candidates[i];
-            Constraint::normal(mesh.positions()[v], normals[v])
-        })
-        .collect();
     let fit_settings = FitSettings {
         lambda: settings.lambda,
         normal_offset: settings.offset,
         ..Default::default()
     };
-    let fit = rbf_solve::fit(&constraints, &fit_settings)?;
+    let normal = |v: usize| Constraint::normal(mesh.positions()[v], normals[v]);
+    let (fit, constraints, greedy) = match settings.tolerance {
+        None => {
+            let points: Vec<[f64; 3]> = candidates.iter().map(|&v| mesh.positions()[v]).collect();
+            let chosen = poisson_subset(&points, settings.max_vertices);
+            let constraints: Vec<Constraint<3>> =
+                chosen.iter().map(|&i| normal(candidates[i])).collect();
+            (
+                rbf_solve::fit(&constraints, &fit_settings)?,
+                constraints,
+                None,
+            )
+        }
+        Some(tolerance) => {
+            let all: Vec<Constraint<3>> = candidates.iter().map(|&v| normal(v)).collect();
+            let greedy = rbf_solve::GreedySettings {
+                tolerance,
+                max_constraints: settings.max_vertices,
+                ..Default::default()
+            };
+            let (fit, r) = rbf_solve::fit_greedy(&all, &fit_settings, &greedy, |_| {})?;
+            let worst = r
+                .rounds
+                .last()
+                .map_or(f64::INFINITY, |round| round.max_error);
+            (fit, r.constraints, Some((worst, r.converged)))
+        }
+    };
     let report = NormalReport {
         vertices,
         vertices_used: constraints.len(),
         without_normal: vertices - candidates.len(),
-        thinned: chosen.len() < candidates.len(),
+        thinned: constraints.len() < candidates.len(),
+        greedy,
         fit: fit.report,
     };
     let model = Model {

@@ -116,3 +116,33 @@ fn a_mesh_without_normals_is_an_error() {
     let e = convert_normals(&mesh, &NormalSettings::default()).unwrap_err();
     assert!(e.to_string().contains("normal"), "{e}");
 }
+
+#[test]
+fn greedy_vertices_meet_every_vertex_within_the_tolerance() {
+    let mesh = read_mesh(&data("spot.obj")).unwrap();
+    let tolerance = 1e-3;
+    let s = NormalSettings {
+        tolerance: Some(tolerance),
+        ..Default::default()
+    };
+    let (model, report) = convert_normals(&mesh, &s).unwrap();
+    let (worst, converged) = report.greedy.unwrap();
+    assert!(converged && worst <= tolerance, "{report:?}");
+    assert!(
+        report.thinned && report.vertices_used < report.vertices * 2 / 3,
+        "{report:?}"
+    );
+    // Independently: every vertex of the mesh, chosen or not, is that near the surface.
+    let (lo, hi) = mesh.bounding_box();
+    let longest = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    let f = &model.interpolant;
+    for p in mesh.positions() {
+        let (v, g) = f.value_and_gradient(p);
+        let miss = v.abs() / (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+        assert!(
+            miss <= tolerance * longest,
+            "a vertex is {} of the box away",
+            miss / longest
+        );
+    }
+}
