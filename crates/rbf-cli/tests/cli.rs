@@ -1202,3 +1202,82 @@ fn greedy_fit_uses_few_of_many_points_and_says_so() {
         assert_eq!(o.status.code(), Some(1), "{bad:?}: {}", stderr(&o));
     }
 }
+
+#[test]
+fn sculpt_takes_commands_at_a_prompt_and_from_text_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("blob.json");
+    let preview = dir.path().join("blob.png");
+    let o = rbf(
+        &[
+            "sculpt",
+            "-",
+            "-o",
+            model.to_str().unwrap(),
+            "--preview",
+            preview.to_str().unwrap(),
+            "--frame-size",
+            "48",
+        ],
+        Some(
+            "add 0 0 1.5\nadd 1 2\ndelete 99\nmove 12 0 0 1.8\nnormal 12\nundo\nquit\nadd 5 5 5\n",
+        ),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8(o.stdout.clone()).unwrap();
+    let answers: Vec<&str> = out.lines().collect();
+    assert!(answers[0].starts_with("item 12 added; 13 items"), "{out}");
+    assert_eq!(answers[1], "refused: usage: add X Y Z");
+    assert!(
+        answers[2].starts_with("refused: ") && answers[2].contains("99"),
+        "{out}"
+    );
+    assert!(answers[3].starts_with("done; 13 items"), "{out}");
+    assert!(answers[4].starts_with("item 13 added; 14 items"), "{out}");
+    assert!(answers[5].starts_with("done; 13 items"), "{out}");
+    assert_eq!(answers.len(), 6, "nothing after quit: {out}");
+    assert!(
+        stderr(&o).contains("4 edits applied, 2 refused; 13 constraints"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(&std::fs::read(&preview).unwrap()[1..4], b"PNG");
+    // The model reads back and passes through the moved point.
+    let o = rbf(&["eval", model.to_str().unwrap(), "-"], Some("0 0 1.8\n"));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: f64 = String::from_utf8(o.stdout).unwrap().trim().parse().unwrap();
+    assert!(v.abs() < 1e-9, "{v}");
+    // The same commands in a text file; a bad line there is an error naming it.
+    let script = write(
+        dir.path(),
+        "edits.txt",
+        "# a bump\nadd 0 0 1.5\nmove 12 0 0 1.8\n",
+    );
+    let o = rbf(
+        &[
+            "sculpt",
+            script.to_str().unwrap(),
+            "-o",
+            model.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("applied 2 edits"), "{}", stderr(&o));
+    let bad = write(dir.path(), "bad.txt", "add 0 0 1.5\nsmooth 3\n");
+    let o = rbf(
+        &[
+            "sculpt",
+            bad.to_str().unwrap(),
+            "-o",
+            model.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("bad.txt: line 2: unknown command `smooth`"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -18,12 +18,14 @@
 //! assert!(s.items()[handle].is_none());
 //! ```
 
+mod command;
 mod error;
 mod floaters;
 mod incremental;
 mod script;
 mod session;
 
+pub use command::{COMMANDS, parse_command};
 pub use error::SculptError;
 pub use floaters::{FloaterSettings, Floaters};
 pub use incremental::{IncrementalFit, Row};

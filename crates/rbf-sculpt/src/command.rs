@@ -1,0 +1,205 @@
+//! One-line edit commands, for typing edits at a prompt: the same edits as scripts, in words.
+
+use crate::Edit;
+
+/// The commands [`parse_command`] understands, for a prompt's help.
+pub const COMMANDS: &str = "\
+add X Y Z                     a boundary constraint: the surface moves to pass through it
+pick OX OY OZ DX DY DZ        a boundary constraint where the ray meets the surface
+interior X Y Z [VALUE]        f = VALUE (default 1) there
+exterior X Y Z [VALUE]        f = VALUE (default -1) there
+move ITEM X Y Z               move an item
+normal ITEM                   a normal handle on boundary item ITEM
+tip ITEM X Y Z                move the free end of normal handle ITEM
+delete ITEM                   remove an item
+undo | redo";
+
+/// Parses one command line into an edit (see [`COMMANDS`]); `Ok(None)` for a blank line or a
+/// `#` comment.
+///
+/// ```
+/// use rbf_sculpt::{Edit, parse_command};
+/// assert_eq!(parse_command("add 0 0 1.5").unwrap(), Some(Edit::AddBoundary { position: [0.0, 0.0, 1.5] }));
+/// assert_eq!(parse_command("move 12 1 2 3").unwrap(), Some(Edit::Move { item: 12, to: [1.0, 2.0, 3.0] }));
+/// assert!(parse_command("move twelve 1 2 3").is_err());
+/// ```
+pub fn parse_command(line: &str) -> Result<Option<Edit>, String> {
+    let line = line.split('#').next().unwrap_or("");
+    let mut words = line.split_whitespace();
+    let Some(verb) = words.next() else {
+        return Ok(None);
+    };
+    let args: Vec<&str> = words.collect();
+    let number = |i: usize| -> Result<f64, String> {
+        let w = args[i];
+        match w.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(format!("`{w}` is not a finite number")),
+        }
+    };
+    let item = |i: usize| -> Result<usize, String> {
+        args[i]
+            .parse::<usize>()
+            .map_err(|_| format!("`{}` is not an item number", args[i]))
+    };
+    let point = |from: usize| -> Result<[f64; 3], String> {
+        Ok([number(from)?, number(from + 1)?, number(from + 2)?])
+    };
+    let expect = |counts: &[usize], usage: &str| -> Result<(), String> {
+        if counts.contains(&args.len()) {
+            Ok(())
+        } else {
+            Err(format!("usage: {usage}"))
+        }
+    };
+    let edit = match verb {
+        "add" => {
+            expect(&[3], "add X Y Z")?;
+            Edit::AddBoundary {
+                position: point(0)?,
+            }
+        }
+        "pick" => {
+            expect(&[6], "pick OX OY OZ DX DY DZ")?;
+            Edit::PickBoundary {
+                origin: point(0)?,
+                direction: point(3)?,
+            }
+        }
+        "interior" | "exterior" => {
+            expect(&[3, 4], &format!("{verb} X Y Z [VALUE]"))?;
+            let interior = verb == "interior";
+            let value = if args.len() == 4 {
+                number(3)?
+            } else if interior {
+                1.0
+            } else {
+                -1.0
+            };
+            let position = point(0)?;
+            if interior {
+                Edit::AddInterior { position, value }
+            } else {
+                Edit::AddExterior { position, value }
+            }
+        }
+        "move" => {
+            expect(&[4], "move ITEM X Y Z")?;
+            Edit::Move {
+                item: item(0)?,
+                to: point(1)?,
+            }
+        }
+        "normal" => {
+            expect(&[1], "normal ITEM")?;
+            Edit::AddNormal { item: item(0)? }
+        }
+        "tip" => {
+            expect(&[4], "tip ITEM X Y Z")?;
+            Edit::MoveNormal {
+                item: item(0)?,
+                to: point(1)?,
+            }
+        }
+        "delete" => {
+            expect(&[1], "delete ITEM")?;
+            Edit::Delete { item: item(0)? }
+        }
+        "undo" => {
+            expect(&[0], "undo")?;
+            Edit::Undo
+        }
+        "redo" => {
+            expect(&[0], "redo")?;
+            Edit::Redo
+        }
+        other => {
+            return Err(format!(
+                "unknown command `{other}`; the commands:\n{COMMANDS}"
+            ));
+        }
+    };
+    Ok(Some(edit))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_edit_has_a_command() {
+        let cases = [
+            (
+                "add 1 2 3",
+                Edit::AddBoundary {
+                    position: [1.0, 2.0, 3.0],
+                },
+            ),
+            (
+                "pick 0 0 5 0 0 -1",
+                Edit::PickBoundary {
+                    origin: [0.0, 0.0, 5.0],
+                    direction: [0.0, 0.0, -1.0],
+                },
+            ),
+            (
+                "interior 0 0 0",
+                Edit::AddInterior {
+                    position: [0.0; 3],
+                    value: 1.0,
+                },
+            ),
+            (
+                "interior 0 0 0 2.5",
+                Edit::AddInterior {
+                    position: [0.0; 3],
+                    value: 2.5,
+                },
+            ),
+            (
+                "exterior 3 3 3",
+                Edit::AddExterior {
+                    position: [3.0; 3],
+                    value: -1.0,
+                },
+            ),
+            (
+                "move 4 1 1 1",
+                Edit::Move {
+                    item: 4,
+                    to: [1.0; 3],
+                },
+            ),
+            ("normal 12", Edit::AddNormal { item: 12 }),
+            (
+                "tip 13 0 0 2",
+                Edit::MoveNormal {
+                    item: 13,
+                    to: [0.0, 0.0, 2.0],
+                },
+            ),
+            ("delete 0", Edit::Delete { item: 0 }),
+            ("  undo  # back", Edit::Undo),
+            ("redo", Edit::Redo),
+        ];
+        for (line, edit) in cases {
+            assert_eq!(parse_command(line), Ok(Some(edit)), "{line}");
+        }
+        assert_eq!(parse_command("   # nothing"), Ok(None));
+        assert_eq!(parse_command(""), Ok(None));
+    }
+
+    #[test]
+    fn mistakes_say_what_was_expected() {
+        for (line, phrase) in [
+            ("add 1 2", "usage: add X Y Z"),
+            ("add 1 2 nan", "`nan` is not a finite number"),
+            ("move -1 0 0 0", "`-1` is not an item number"),
+            ("undo 3", "usage: undo"),
+            ("smooth 3", "unknown command `smooth`"),
+        ] {
+            let e = parse_command(line).unwrap_err();
+            assert!(e.contains(phrase), "{line}: {e}");
+        }
+    }
+}
