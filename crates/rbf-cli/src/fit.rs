@@ -99,7 +99,7 @@ enum SolverArg {
     Lu,
 }
 
-pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
+pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Failure> {
     let source = args.input.display().to_string();
     let text = read_text(&args.input)?;
     let mut settings = FitSettings::default();
@@ -168,6 +168,7 @@ pub(crate) fn run(args: &FitArgs, quiet: bool) -> Result<(), Failure> {
         settings,
         options,
         quiet,
+        verbose,
         output: &args.output,
         greedy: args.greedy.then_some(GreedySettings {
             tolerance: args.tolerance,
@@ -225,6 +226,7 @@ struct Job<'a> {
     settings: FitSettings,
     options: SolveOptions,
     quiet: bool,
+    verbose: bool,
     output: &'a std::path::Path,
     greedy: Option<GreedySettings>,
 }
@@ -303,11 +305,17 @@ impl Job<'_> {
             self.quiet,
             format!("checking {} constraints", constraints.len()),
         );
+        let mut number = 0;
         let result = rbf_solve::fit_greedy(&constraints, &self.settings, greedy, |round| {
-            spinner.set_message(format!(
-                "greedy fit: {} constraints miss by up to {:.1e} of the box",
-                round.constraints, round.max_error
-            ));
+            number += 1;
+            let line = format!(
+                "round {number:2}: {} constraints miss by up to {:.2e} of the box; fit {:.3} s, measure {:.3} s",
+                round.constraints, round.max_error, round.fit_seconds, round.evaluate_seconds
+            );
+            if self.verbose {
+                spinner.suspend(|| eprintln!("{line}"));
+            }
+            spinner.set_message(line);
         });
         spinner.finish_and_clear();
         let (fit, greedy_report) = result.map_err(|e| Failure::fit(self.source, &e))?;

@@ -45,7 +45,8 @@ struct Cli {
     /// Print nothing but results and errors.
     #[arg(short, long, global = true, conflicts_with = "verbose")]
     quiet: bool,
-    /// Print more: every iteration of a conversion with its timings, the work of a render.
+    /// Print more: every iteration of a conversion and every round of a greedy fit with their
+    /// timings, the work of a render.
     #[arg(short, long, global = true)]
     verbose: bool,
     /// Worker threads (default: one per core).
@@ -157,7 +158,7 @@ fn main() -> ExitCode {
         return ExitCode::from(1);
     }
     let result = match cli.command {
-        Command::Fit(args) => fit::run(&args, cli.quiet),
+        Command::Fit(args) => fit::run(&args, cli.quiet, cli.verbose),
         Command::Eval(args) => eval::run(&args),
         Command::Check(args) => check::run(&args),
         Command::Convert(args) => convert::run(&args, cli.quiet, cli.verbose),

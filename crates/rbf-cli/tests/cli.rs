@@ -1165,8 +1165,13 @@ fn greedy_fit_uses_few_of_many_points_and_says_so() {
             format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2])
         })
         .collect();
-    let (model, o) = fit_file(dir.path(), "scan.txt", &points, &["--greedy"]);
+    let (model, o) = fit_file(dir.path(), "scan.txt", &points, &["--greedy", "-v"]);
     assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("round  1: 100 constraints miss by up to"),
+        "{}",
+        stderr(&o)
+    );
     assert!(
         stderr(&o).contains(&format!("of {n} constraints greedily")),
         "{}",
