@@ -22,7 +22,8 @@ pub struct GreedySettings {
     pub initial: usize,
     /// Stop when the surface misses no constraint by more than this fraction of the bounding
     /// box's longest side: 1e-4. A constraint's miss is |f(x) − h| / |∇f(x)|, the distance to
-    /// the level set it asks for (to first order), largest over its rows.
+    /// the level set it asks for (to first order), largest over its rows. With λ > 0 the
+    /// surface misses on purpose (by about λ times the weights), so the tolerance must allow it.
     pub tolerance: f64,
     /// The most constraints the fit may use: 5000.
     pub max_constraints: usize,
