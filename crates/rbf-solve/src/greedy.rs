@@ -100,7 +100,8 @@ pub fn fit_greedy<const D: usize>(
 ) -> Result<(Fit<D>, GreedyReport<D>), FitError> {
     let system = System::new(constraints, settings)?;
     let constraints = with_offsets(constraints, &system);
-    let longest = longest_side(system.points());
+    // The longest side of the rows' bounding box (the system's scale is half of it).
+    let longest = 2.0 * system.scale();
     let tolerance = greedy.tolerance.max(0.0) * longest;
     let budget = greedy.max_constraints.clamp(1, constraints.len());
     let mut used = spread(&constraints, greedy.initial.clamp(1, budget));
@@ -173,18 +174,6 @@ fn with_offsets<const D: usize>(
         }
     }
     out
-}
-
-fn longest_side<const D: usize>(points: &[[f64; D]]) -> f64 {
-    let mut lo = [f64::INFINITY; D];
-    let mut hi = [f64::NEG_INFINITY; D];
-    for p in points {
-        for d in 0..D {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
-    (0..D).map(|d| hi[d] - lo[d]).fold(0.0, f64::max)
 }
 
 /// `count` constraints spread by farthest-point sampling from the first, plus the first
