@@ -139,7 +139,7 @@ fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {
          {} voxels, {} iterations, converted in {converted:.1} s: max error {:.2} voxels, RMS {:.2}\n  \
          {} boundary, {} interior, {} exterior constraints\n  \
          distance to the mesh, both ways (rbf compare): RMS {:.2} voxels, Hausdorff {:.2} voxels\n  \
-         polygonized: {} triangles, {}, genus {}\n  \
+         polygonized: {} triangles, {}\n  \
          wrote {}, {} and {} (the mesh, left, and its implicit surface, right) in {:.1} s",
         mesh.triangles().len(),
         report
@@ -157,12 +157,7 @@ fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {
         rms / voxel,
         distance.hausdorff() / voxel,
         check.triangles,
-        if check.is_watertight() {
-            "watertight"
-        } else {
-            "open"
-        },
-        check.genus.map_or("-".into(), |g| g.to_string()),
+        closure(&check),
         model_path.display(),
         mesh_path.display(),
         png_path.display(),
@@ -264,15 +259,10 @@ pub(crate) fn run(dir: &Path, quiet: bool) -> Result<(), Failure> {
         write_mesh(&mesh_path, &mesh).map_err(|e| Failure::new(BAD_INPUT, e.to_string()))?;
         let r = mesh.check();
         let meshed = format!(
-            "polygonized in {:.3} s: {} triangles, {}, genus {}; wrote {}",
+            "polygonized in {:.3} s: {} triangles, {}; wrote {}",
             start.elapsed().as_secs_f64(),
             r.triangles,
-            if r.is_watertight() {
-                "watertight"
-            } else {
-                "open"
-            },
-            r.genus.map_or("-".into(), |g| g.to_string()),
+            closure(&r),
             mesh_path.display()
         );
         say(format!(
@@ -290,4 +280,15 @@ pub(crate) fn run(dir: &Path, quiet: bool) -> Result<(), Failure> {
         dir.display()
     ));
     Ok(())
+}
+
+/// "watertight, genus G" or "open, genus -": how closed a polygonized surface is.
+fn closure(r: &rbf_mesh::MeshReport) -> String {
+    let genus = r.genus.map_or("-".into(), |g| g.to_string());
+    let kind = if r.is_watertight() {
+        "watertight"
+    } else {
+        "open"
+    };
+    format!("{kind}, genus {genus}")
 }

@@ -45,7 +45,7 @@ pub fn parse_command(line: &str) -> Result<Option<Edit>, String> {
     let point = |from: usize| -> Result<[f64; 3], String> {
         Ok([number(from)?, number(from + 1)?, number(from + 2)?])
     };
-    let expect = |counts: &[usize], usage: &str| -> Result<(), String> {
+    let arity = |counts: &[usize], usage: &str| -> Result<(), String> {
         if counts.contains(&args.len()) {
             Ok(())
         } else {
@@ -54,20 +54,20 @@ pub fn parse_command(line: &str) -> Result<Option<Edit>, String> {
     };
     let edit = match verb {
         "add" => {
-            expect(&[3], "add X Y Z")?;
+            arity(&[3], "add X Y Z")?;
             Edit::AddBoundary {
                 position: point(0)?,
             }
         }
         "pick" => {
-            expect(&[6], "pick OX OY OZ DX DY DZ")?;
+            arity(&[6], "pick OX OY OZ DX DY DZ")?;
             Edit::PickBoundary {
                 origin: point(0)?,
                 direction: point(3)?,
             }
         }
         "interior" | "exterior" => {
-            expect(&[3, 4], &format!("{verb} X Y Z [VALUE]"))?;
+            arity(&[3, 4], &format!("{verb} X Y Z [VALUE]"))?;
             let interior = verb == "interior";
             let value = if args.len() == 4 {
                 number(3)?
@@ -84,33 +84,33 @@ pub fn parse_command(line: &str) -> Result<Option<Edit>, String> {
             }
         }
         "move" => {
-            expect(&[4], "move ITEM X Y Z")?;
+            arity(&[4], "move ITEM X Y Z")?;
             Edit::Move {
                 item: item(0)?,
                 to: point(1)?,
             }
         }
         "normal" => {
-            expect(&[1], "normal ITEM")?;
+            arity(&[1], "normal ITEM")?;
             Edit::AddNormal { item: item(0)? }
         }
         "tip" => {
-            expect(&[4], "tip ITEM X Y Z")?;
+            arity(&[4], "tip ITEM X Y Z")?;
             Edit::MoveNormal {
                 item: item(0)?,
                 to: point(1)?,
             }
         }
         "delete" => {
-            expect(&[1], "delete ITEM")?;
+            arity(&[1], "delete ITEM")?;
             Edit::Delete { item: item(0)? }
         }
         "undo" => {
-            expect(&[0], "undo")?;
+            arity(&[0], "undo")?;
             Edit::Undo
         }
         "redo" => {
-            expect(&[0], "redo")?;
+            arity(&[0], "redo")?;
             Edit::Redo
         }
         other => {
