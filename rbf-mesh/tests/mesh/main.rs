@@ -12,7 +12,7 @@ use std::path::PathBuf;
 /// A mesh shipped in the repository's `data/meshes`.
 pub fn data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data/meshes")
+        .join("../data/meshes")
         .join(name)
 }
 

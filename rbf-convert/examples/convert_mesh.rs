@@ -10,7 +10,7 @@ use rbf_convert::{IterativeSettings, convert_iterative};
 fn main() {
     let mut args = std::env::args().skip(1);
     let path = args.next().map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../data/meshes/torus.obj"),
+        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../data/meshes/torus.obj"),
         PathBuf::from,
     );
     let resolution = args.next().and_then(|r| r.parse().ok()).unwrap_or(48);

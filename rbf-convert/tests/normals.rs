@@ -5,7 +5,7 @@ use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_continuation, read_mes
 
 fn data(name: &str) -> std::path::PathBuf {
     std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data/meshes")
+        .join("../data/meshes")
         .join(name)
 }
 

@@ -391,7 +391,7 @@ fn a_system_too_large_for_memory_exits_3_with_its_size() {
 
 #[test]
 fn check_reports_a_mesh() {
-    let torus = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/torus.obj");
+    let torus = concat!(env!("CARGO_MANIFEST_DIR"), "/../data/meshes/torus.obj");
     let o = rbf(&["check", torus], None);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8(o.stdout).unwrap();
@@ -465,7 +465,7 @@ fn mesh_writes_a_watertight_surface_in_every_format() {
 #[test]
 fn voxelize_writes_npy_and_its_metadata() {
     let dir = tempfile::tempdir().unwrap();
-    let torus = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/torus.obj");
+    let torus = concat!(env!("CARGO_MANIFEST_DIR"), "/../data/meshes/torus.obj");
     let out = dir.path().join("t.npy");
     let o = rbf(
         &[
@@ -513,7 +513,7 @@ fn voxelize_writes_npy_and_its_metadata() {
 #[test]
 fn convert_then_mesh_keeps_the_genus() {
     let dir = tempfile::tempdir().unwrap();
-    let torus = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/torus.obj");
+    let torus = concat!(env!("CARGO_MANIFEST_DIR"), "/../data/meshes/torus.obj");
     let model = dir.path().join("torus.json");
     let o = rbf(
         &[
@@ -582,7 +582,7 @@ fn convert_then_mesh_keeps_the_genus() {
 #[test]
 fn iterative_convert_reports_every_iteration() {
     let dir = tempfile::tempdir().unwrap();
-    let knot = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/knot.obj");
+    let knot = concat!(env!("CARGO_MANIFEST_DIR"), "/../data/meshes/knot.obj");
     let model = dir.path().join("knot.json");
     let report = dir.path().join("report.json");
     let o = rbf(
@@ -939,7 +939,7 @@ fn sculpt_replays_the_torus_script_and_floaters_sample_it() {
 #[test]
 fn info_export_and_completions() {
     let dir = tempfile::tempdir().unwrap();
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/embedded");
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/embedded");
     let model = format!("{root}/model.json");
     // The committed export is what `rbf export` writes today.
     let out = dir.path().join("model.rs");
@@ -1049,7 +1049,7 @@ fn the_gallery_reproduces_the_papers_figures_at_reduced_size() {
 #[test]
 fn verbose_shows_every_iteration_and_conflicts_with_quiet() {
     let dir = tempfile::tempdir().unwrap();
-    let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/meshes/torus.obj");
+    let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/../data/meshes/torus.obj");
     let out = dir.path().join("t.json");
     let o = rbf(
         &[

@@ -54,7 +54,7 @@ fn crossing(f: &rbf_core::Interpolant<f64, 3>, d: [f64; 3]) -> f64 {
 }
 
 /// Spot the cow (Keenan Crane, public domain; see NOTICE.md), inside the binary.
-pub(crate) const SPOT: &[u8] = include_bytes!("../../../data/meshes/spot.obj");
+pub(crate) const SPOT: &[u8] = include_bytes!("../assets/spot.obj");
 
 /// A mesh (left, rasterized) and a model (right, traced) from one camera, with shadows.
 pub(crate) fn mesh_and_model(
