@@ -43,7 +43,7 @@ fn greedy(c: &mut Criterion) {
     let mut group = c.benchmark_group("greedy");
     group.sample_size(10);
     for n in [20_000_usize, 100_000] {
-        let cs = rbf_benches::torus_points(n);
+        let cs = rbf_core::shapes::torus(n, 0.35);
         group.bench_with_input(BenchmarkId::new("torus", n), &cs, |b, cs| {
             b.iter(|| rbf_solve::fit_greedy(cs, &settings, &greedy, |_| {}).expect("fit"))
         });

@@ -92,27 +92,9 @@ pub fn torus_and_ball(m: usize) -> rbf_mesh::Volume<f32> {
     v
 }
 
-/// `n` oriented points spread over a torus (tube radius 0.35 about a circle of radius 1).
-pub fn torus_points(n: usize) -> Vec<Constraint<3>> {
-    let golden = (5f64.sqrt() - 1.0) / 2.0;
-    (0..n)
-        .map(|i| {
-            let u = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
-            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
-            let normal = [v.cos() * u.cos(), v.cos() * u.sin(), v.sin()];
-            let p = [
-                (1.0 + 0.35 * v.cos()) * u.cos(),
-                (1.0 + 0.35 * v.cos()) * u.sin(),
-                0.35 * v.sin(),
-            ];
-            Constraint::normal(p, normal)
-        })
-        .collect()
-}
-
 /// A torus of `n` oriented points (3000 rows for n = 1500), fitted.
 pub fn torus_model(n: usize) -> Model<3> {
-    let cs = torus_points(n);
+    let cs = rbf_core::shapes::torus(n, 0.35);
     let settings = FitSettings::default();
     let fit = rbf_solve::fit(&cs, &settings).expect("the torus fits");
     Model {

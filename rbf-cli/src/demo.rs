@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use rbf_core::{Constraint, FitSettings, Model};
+use rbf_core::{Constraint, FitSettings, Model, shapes};
 use rbf_mesh::{
     PolygonizeSettings, Resolution, polygonize_continuation, surface_seeds, write_mesh,
 };
@@ -13,44 +13,25 @@ use rbf_mesh::{
 use crate::failure::{BAD_INPUT, Failure};
 use crate::io::write_atomically;
 
-/// Unit-length corners of a regular tetrahedron.
-fn tetrahedron() -> [[f64; 3]; 4] {
-    let s = 1.0 / 3f64.sqrt();
-    [[s, s, s], [s, -s, -s], [-s, s, -s], [-s, -s, s]]
-}
-
-/// `n` oriented points spread evenly over a torus (radii 1 and 0.35) by a Fibonacci lattice.
-fn torus(n: usize) -> Vec<Constraint<3>> {
-    let (big, small) = (1.0, 0.35);
-    let golden = (5f64.sqrt() - 1.0) / 2.0;
-    (0..n)
-        .map(|i| {
-            let u = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
-            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
-            let normal = [v.cos() * u.cos(), v.cos() * u.sin(), v.sin()];
-            let p = [
-                (big + small * v.cos()) * u.cos(),
-                (big + small * v.cos()) * u.sin(),
-                small * v.sin(),
-            ];
-            Constraint::normal(p, normal)
+/// Radii at which the surface of f crosses rays from the origin in `directions`: where rays
+/// cast inward from radius 5 first meet it, by the renderer's sphere tracer.
+fn crossings(f: &rbf_core::Interpolant<f64, 3>, directions: &[[f64; 3]]) -> Result<Vec<f64>, Failure> {
+    const FAR: f64 = 5.0;
+    let rays: Vec<rbf_render::Ray> = directions
+        .iter()
+        .map(|d| rbf_render::Ray {
+            origin: d.map(|c| FAR * c),
+            direction: d.map(|c| -c),
         })
-        .collect()
-}
-
-/// Radius at which f changes sign along the ray from the origin in direction `d`.
-fn crossing(f: &rbf_core::Interpolant<f64, 3>, d: [f64; 3]) -> f64 {
-    let at = |t: f64| f.value(&d.map(|c| c * t));
-    let (mut lo, mut hi) = (0.0, 5.0);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if at(mid) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
+        .collect();
+    let hits = rbf_render::first_hits(
+        &[f.view()],
+        &rbf_render::Csg::Model(0),
+        &rays,
+        &rbf_render::RenderSettings::default(),
+    )
+    .map_err(|e| Failure::new(BAD_INPUT, e.to_string()))?;
+    Ok(hits.into_iter().map(|t| FAR - t.unwrap_or(FAR)).collect())
 }
 
 /// Spot the cow (Keenan Crane, public domain; see NOTICE.md), inside the binary.
@@ -180,27 +161,20 @@ pub(crate) fn run(dir: &Path, quiet: bool) -> Result<(), Failure> {
     say("\nThe paper's first examples:".into());
 
     let mut examples: Vec<(&str, &str, Vec<Constraint<3>>)> = Vec::new();
-    let mut blob: Vec<Constraint<3>> = tetrahedron().map(Constraint::boundary).to_vec();
-    blob.push(Constraint::interior([0.0; 3], 1.0));
     examples.push((
         "figure2-blob",
         "tetrahedron + centre (paper 000, Fig. 2 left)",
-        blob,
+        shapes::tetrahedron_blob(),
     ));
-    let mut sculpt: Vec<Constraint<3>> = tetrahedron().map(Constraint::boundary).to_vec();
-    for i in 0..8 {
-        let c = |b: usize| if i >> b & 1 == 1 { 3.0 } else { -3.0 };
-        sculpt.push(Constraint::exterior([c(0), c(1), c(2)], -1.0));
-    }
     examples.push((
         "sculpt-start",
         "tetrahedron in a cube of side 6 (§5)",
-        sculpt,
+        shapes::sculpt_start(),
     ));
     examples.push((
         "torus-2000",
         "2000 oriented points on a torus (4000 rows)",
-        torus(2000),
+        shapes::torus(2000, 0.35),
     ));
 
     for (name, what, constraints) in examples {
@@ -210,7 +184,7 @@ pub(crate) fn run(dir: &Path, quiet: bool) -> Result<(), Failure> {
         let f = &fit.interpolant;
         let check = if name.starts_with("torus") {
             // First-order distance |f|/|∇f| at points of the true torus between the constraints.
-            let worst = torus(2001)
+            let worst = shapes::torus(2001, 0.35)
                 .iter()
                 .map(|c| {
                     let (v, g) = f.value_and_gradient(&c.position);
@@ -222,14 +196,7 @@ pub(crate) fn run(dir: &Path, quiet: bool) -> Result<(), Failure> {
                 f.value(&[0.0; 3])
             )
         } else {
-            let radii: Vec<f64> = (0..200)
-                .map(|i| {
-                    let z = 1.0 - 2.0 * (i as f64 + 0.5) / 200.0;
-                    let t = i as f64 * 2.399_963;
-                    let r = (1.0 - z * z).sqrt();
-                    crossing(f, [r * t.cos(), r * t.sin(), z])
-                })
-                .collect();
+            let radii = crossings(f, &shapes::fibonacci_sphere(200))?;
             let (lo, hi) = radii
                 .iter()
                 .fold((f64::INFINITY, 0.0_f64), |(a, b), &r| (a.min(r), b.max(r)));

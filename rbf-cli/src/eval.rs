@@ -62,7 +62,7 @@ fn eval<const D: usize>(model: &Model<D>, text: &str, args: &EvalArgs) -> Result
             .collect()
     } else {
         let mut values = vec![0.0; points.len()];
-        let _ = rbf_solve::par_values(&f, &points, &mut values);
+        let _ = f.par_values(&points, &mut values);
         values.iter().map(|v| format!("{v:?}")).collect()
     };
     let stdout = std::io::stdout();

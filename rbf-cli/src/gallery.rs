@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
-use rbf_core::{Constraint, FitSettings, Model};
+use rbf_core::{Constraint, FitSettings, Model, shapes};
 use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_grid};
 use rbf_render::{Camera, Csg, Image, Object, PlotSettings, RenderSettings, plot_curve, render};
 use serde_json::{Value, json};
@@ -134,91 +134,24 @@ fn pair(a: &Image, b: &Image) -> Result<Image, Failure> {
     Image::side_by_side(a, b).map_err(bad)
 }
 
-/// Corners of a regular tetrahedron inscribed in the unit sphere.
-fn tetrahedron() -> [[f64; 3]; 4] {
-    let s = 1.0 / 3f64.sqrt();
-    [[s, s, s], [s, -s, -s], [-s, s, -s], [-s, -s, s]]
-}
-
-/// Boundary constraints at the corners of a triangular prism and one interior at its centre,
-/// then three smaller, tilted prisms on top, recursively (Figure 2, right).
-fn branching(
-    centre: [f64; 3],
-    size: f64,
-    tilt: [f64; 2],
-    depth: usize,
-    out: &mut Vec<Constraint<3>>,
-) {
-    let height = 1.6 * size;
-    for k in 0..3 {
-        let a = std::f64::consts::TAU * k as f64 / 3.0;
-        for (level, dy) in [(0.0, 0.0), (1.0, height)] {
-            out.push(Constraint::boundary([
-                centre[0] + size * a.cos() + level * tilt[0] * height,
-                centre[1] + dy,
-                centre[2] + size * a.sin() + level * tilt[1] * height,
-            ]));
-        }
-    }
-    out.push(Constraint::interior(
-        [
-            centre[0] + 0.5 * tilt[0] * height,
-            centre[1] + 0.5 * height,
-            centre[2] + 0.5 * tilt[1] * height,
-        ],
-        1.0,
-    ));
-    if depth == 0 {
-        return;
-    }
-    for k in 0..3 {
-        let a = std::f64::consts::TAU * (k as f64 + 0.5) / 3.0;
-        let top = [
-            centre[0] + tilt[0] * height,
-            centre[1] + 0.9 * height,
-            centre[2] + tilt[1] * height,
-        ];
-        let c = [
-            top[0] + 0.75 * size * a.cos(),
-            top[1],
-            top[2] + 0.75 * size * a.sin(),
-        ];
-        branching(
-            c,
-            0.5 * size,
-            [0.6 * a.cos(), 0.6 * a.sin()],
-            depth - 1,
-            out,
-        );
-    }
-}
-
-/// `n` oriented points on a torus around the y axis at `centre`.
+/// `n` oriented points on a torus about the y axis at `centre` (radii 1 and 0.35).
 fn torus(centre: [f64; 3], n: usize) -> Vec<Constraint<3>> {
-    let golden = (5f64.sqrt() - 1.0) / 2.0;
-    (0..n)
-        .map(|k| {
-            let u = std::f64::consts::TAU * (k as f64 + 0.5) / n as f64;
-            let v = std::f64::consts::TAU * (k as f64 * golden).fract();
-            let normal = [v.cos() * u.cos(), v.sin(), v.cos() * u.sin()];
-            let p = [
-                centre[0] + (1.0 + 0.35 * v.cos()) * u.cos(),
-                centre[1] + 0.35 * v.sin(),
-                centre[2] + (1.0 + 0.35 * v.cos()) * u.sin(),
-            ];
-            Constraint::normal(p, normal)
+    shapes::torus_points(n, 0.35)
+        .into_iter()
+        .map(|(p, normal)| {
+            let [x, y, z] = p;
+            let p = [centre[0] + x, centre[1] + z, centre[2] + y];
+            Constraint::normal(p, [normal[0], normal[2], normal[1]])
         })
         .collect()
 }
 
-/// A sphere of oriented points.
+/// A sphere of `n` oriented points about `centre`, its poles on the y axis.
 fn sphere(centre: [f64; 3], radius: f64, n: usize) -> Vec<Constraint<3>> {
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let t = i as f64 * 2.399_963;
-            let r = (1.0 - z * z).sqrt();
-            let d = [r * t.cos(), z, r * t.sin()];
+    shapes::fibonacci_sphere(n)
+        .into_iter()
+        .map(|[x, y, z]| {
+            let d = [x, z, y];
             Constraint::normal(core::array::from_fn(|k| centre[k] + radius * d[k]), d)
         })
         .collect()
@@ -263,12 +196,8 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     say("fig1");
 
     // Figure 2: the tetrahedron blob; a branching object from prisms.
-    let mut c: Vec<Constraint<3>> = tetrahedron().map(Constraint::boundary).to_vec();
-    c.push(Constraint::interior([0.0; 3], 1.0));
-    let blob = fit(c)?;
-    let mut c = Vec::new();
-    branching([0.0; 3], 1.0, [0.0, 0.0], 1, &mut c);
-    let tree = fit(c)?;
+    let blob = fit(shapes::tetrahedron_blob())?;
+    let tree = fit(shapes::branching(1))?;
     g.save("fig2-left", &blob)?;
     g.save("fig2-right", &tree)?;
     let facts = json!({"left": g.topology(&blob)?, "right": g.topology(&tree)?});

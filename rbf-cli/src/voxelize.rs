@@ -62,6 +62,7 @@ pub(crate) fn run(args: &VoxelizeArgs, quiet: bool) -> Result<(), Failure> {
             MethodArg::Rays => VoxelMethod::Rays,
             MethodArg::Winding => VoxelMethod::Winding,
         },
+        memory_limit: rbf_solve::memory_budget(),
         ..Default::default()
     };
     let start = Instant::now();

@@ -1077,14 +1077,9 @@ fn verbose_shows_every_iteration_and_conflicts_with_quiet() {
 fn compare_measures_a_sphere_against_a_cube_both_ways() {
     let dir = tempfile::tempdir().unwrap();
     // A unit sphere from 200 oriented points spread over it.
-    let points: String = (0..200)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / 200.0;
-            let r = (1.0 - z * z).sqrt();
-            let a = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
-            let p = [r * a.cos(), r * a.sin(), z];
-            format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2])
-        })
+    let points: String = rbf_core::shapes::fibonacci_sphere(200)
+        .into_iter()
+        .map(|p| format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2]))
         .collect();
     let (model, o) = fit_file(dir.path(), "sphere.txt", &points, &[]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -1156,14 +1151,9 @@ fn compare_measures_a_sphere_against_a_cube_both_ways() {
 fn greedy_fit_uses_few_of_many_points_and_says_so() {
     let dir = tempfile::tempdir().unwrap();
     let n = 3000;
-    let points: String = (0..n)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            let a = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
-            let p = [r * a.cos(), r * a.sin(), z];
-            format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2])
-        })
+    let points: String = rbf_core::shapes::fibonacci_sphere(n)
+        .into_iter()
+        .map(|p| format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2]))
         .collect();
     let (model, o) = fit_file(dir.path(), "scan.txt", &points, &["--greedy", "-v"]);
     assert!(o.status.success(), "{}", stderr(&o));

@@ -174,22 +174,9 @@ fn cases(model: &str) -> Vec<Case> {
 
 /// `n` oriented points spread over a torus, one `x y z nx ny nz` line each.
 fn torus_points(n: usize) -> String {
-    let golden = (5f64.sqrt() - 1.0) / 2.0;
-    (0..n)
-        .map(|i| {
-            let u = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
-            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
-            let (c, s) = (v.cos(), v.sin());
-            format!(
-                "{} {} {} {} {} {}\n",
-                (1.0 + 0.35 * c) * u.cos(),
-                (1.0 + 0.35 * c) * u.sin(),
-                0.35 * s,
-                c * u.cos(),
-                c * u.sin(),
-                s
-            )
-        })
+    rbf_core::shapes::torus_points(n, 0.35)
+        .into_iter()
+        .map(|(p, d)| format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], d[0], d[1], d[2]))
         .collect()
 }
 

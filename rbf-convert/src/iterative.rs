@@ -135,6 +135,7 @@ pub fn convert_iterative(
             margin: settings.margin,
             supersampling: settings.supersampling,
             method: settings.voxel_method,
+            memory_limit: rbf_solve::memory_budget(),
         },
     )
     .map_err(|e| ConvertError::Mesh(e.to_string()))?;
@@ -147,6 +148,7 @@ pub fn convert_iterative(
             margin: settings.margin,
             supersampling: 1,
             method: settings.voxel_method,
+            memory_limit: rbf_solve::memory_budget(),
         },
     )
     .map_err(|e| ConvertError::Mesh(e.to_string()))?;
@@ -461,13 +463,8 @@ impl Goal {
             .collect();
         let mut coarse = vec![0.0; coarse_points.len()];
         let mut gradients = vec![[0.0; 3]; coarse_points.len()];
-        coarse_points
-            .par_chunks(256)
-            .zip(coarse.par_chunks_mut(256))
-            .zip(gradients.par_chunks_mut(256))
-            .for_each(|((p, o), g)| {
-                let _ = f.values_and_gradients(p, o, g);
-            });
+        // Equal lengths by construction.
+        let _ = f.par_values_and_gradients(&coarse_points, &mut coarse, &mut gradients);
         // How far, in model units, f must be from zero at every corner for a block to be skipped.
         let reach = 1.5 * 0.5 * (3.0_f64).sqrt() * s as f64 * self.h;
         classify_blocks(self.shape, s, |bi, lo, hi| {

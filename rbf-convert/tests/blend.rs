@@ -19,19 +19,12 @@ fn torus_distance(i: usize, p: [f64; 3]) -> f64 {
 
 /// Torus i from `n` oriented points spread over it.
 fn torus(i: usize, n: usize) -> Model<3> {
-    let golden = (5f64.sqrt() - 1.0) / 2.0;
+    // The library's torus (about z, major radius R = 1) turned to stand about y.
     let c = CENTRES[i];
-    let constraints: Vec<Constraint<3>> = (0..n)
-        .map(|k| {
-            let u = std::f64::consts::TAU * (k as f64 + 0.5) / n as f64;
-            let v = std::f64::consts::TAU * (k as f64 * golden).fract();
-            let normal = [v.cos() * u.cos(), v.sin(), v.cos() * u.sin()];
-            let p = [
-                c[0] + (R + TUBE * v.cos()) * u.cos(),
-                c[1] + TUBE * v.sin(),
-                c[2] + (R + TUBE * v.cos()) * u.sin(),
-            ];
-            Constraint::normal(p, normal)
+    let constraints: Vec<Constraint<3>> = rbf_core::shapes::torus_points(n, TUBE)
+        .into_iter()
+        .map(|([x, y, z], [nx, ny, nz])| {
+            Constraint::normal([c[0] + x, c[1] + z, c[2] + y], [nx, nz, ny])
         })
         .collect();
     let settings = FitSettings::default();

@@ -15,11 +15,7 @@ fn a_sphere_like_mesh_gives_the_sphere_to_one_percent() {
     let (model, report) = convert_normals(&mesh, &NormalSettings::default()).unwrap();
     assert_eq!((report.vertices_used, report.thinned), (642, false));
     let f = &model.interpolant;
-    for i in 0..300 {
-        let z = 1.0 - 2.0 * (i as f64 + 0.5) / 300.0;
-        let t = i as f64 * 2.399_963;
-        let r = (1.0 - z * z).sqrt();
-        let d = [r * t.cos(), r * t.sin(), z];
+    for d in rbf_core::shapes::fibonacci_sphere(300) {
         // Bisection for the radius where f changes sign along d.
         let (mut lo, mut hi) = (0.5, 1.5);
         assert!(f.value(&d.map(|c| c * lo)) > 0.0 && f.value(&d.map(|c| c * hi)) < 0.0);

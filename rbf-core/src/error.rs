@@ -103,7 +103,7 @@ pub enum FitError {
         rows: usize,
         /// Bytes it needs.
         bytes: u64,
-        /// Bytes that may be used ([`crate::memory_budget`]), when known.
+        /// Bytes that may be used (`rbf_solve::memory_budget`), when known.
         available: Option<u64>,
     },
     /// The solve produced non-finite weights: the system is singular.

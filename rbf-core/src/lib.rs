@@ -10,7 +10,8 @@
 //! constant arrays runs on a microcontroller. The `alloc` feature adds constraints, the linear
 //! system, a small dense solver ([`fit`]) and knot insertion; `serde` adds versioned JSON model
 //! files; `std` (the default) only switches square roots to the hardware instruction, which
-//! gives the same bits. For large systems use the `rbf-solve` crate, which solves the same
+//! gives the same bits; `rayon` evaluates batches on every core
+//! ([`InterpolantView::par_values`]). For large systems use the `rbf-solve` crate, which solves the same
 //! [`System`] with faer.
 //!
 //! ```
@@ -47,16 +48,14 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
-#[cfg(feature = "std")]
-mod memory;
-#[cfg(feature = "std")]
-pub use memory::{available_memory, memory_budget};
-
 mod bound;
 mod kernel;
 mod math;
 mod real;
 mod view;
+
+#[cfg(feature = "rayon")]
+mod parallel;
 
 pub use bound::BallBound;
 pub use kernel::Kernel;
@@ -81,6 +80,8 @@ mod knot;
 mod model;
 #[cfg(feature = "alloc")]
 mod settings;
+#[cfg(feature = "alloc")]
+pub mod shapes;
 #[cfg(feature = "alloc")]
 mod system;
 #[cfg(feature = "alloc")]

@@ -48,3 +48,17 @@ pub(crate) fn powi(x: f64, n: i32) -> f64 {
     }
     r
 }
+
+#[cfg(feature = "alloc")]
+/// Sine and cosine of x (radians), through libm in every build.
+#[inline]
+pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
+    libm::sincos(x)
+}
+
+#[cfg(feature = "alloc")]
+/// The fractional part of x, with the sign of x (as `f64::fract`).
+#[inline]
+pub(crate) fn fract(x: f64) -> f64 {
+    x - libm::trunc(x)
+}

@@ -20,8 +20,12 @@ pub struct VoxelSettings {
     pub margin: usize,
     /// Sub-samples along each axis of a voxel (s³ per voxel, s² rays per voxel column). 4.
     pub supersampling: usize,
-    /// How inside is decided.
+    /// How inside is decided: rays for closed meshes, winding numbers for open ones.
     pub method: VoxelMethod,
+    /// Bytes that the volume and its signed distance (24 a voxel) may take; a larger grid is
+    /// refused before it is allocated. `None` refuses only grids beyond 2³³ voxels. The CLI and
+    /// rbf-convert pass `rbf_solve::memory_budget()`, what the machine can spare.
+    pub memory_limit: Option<u64>,
 }
 
 /// How the voxelizer decides what is inside.
@@ -44,6 +48,7 @@ impl Default for VoxelSettings {
             margin: 2,
             supersampling: 4,
             method: VoxelMethod::Auto,
+            memory_limit: None,
         }
     }
 }
@@ -78,7 +83,7 @@ pub fn voxel_grid(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32
     // distances, their sources, the surface offsets, the result); refuse what the machine
     // cannot hold.
     let bytes = voxels.map_or(u64::MAX, |v| (v as u64).saturating_mul(BYTES_PER_VOXEL));
-    let available = rbf_core::memory_budget();
+    let available = settings.memory_limit;
     if voxels.is_none_or(|v| v > 1 << 33) || available.is_some_and(|a| bytes > a) {
         return Err(MeshError::Invalid(format!(
             "a volume of {shape:?} voxels is too large: it needs about {} MiB{}; use a coarser resolution",

@@ -599,13 +599,8 @@ fn estimate_cells(
     let evaluate = |points: &[Vec3]| -> (Vec<f64>, Vec<f64>) {
         let mut values = vec![0.0; points.len()];
         let mut gradients = vec![[0.0; 3]; points.len()];
-        points
-            .par_chunks(512)
-            .zip(values.par_chunks_mut(512))
-            .zip(gradients.par_chunks_mut(512))
-            .for_each(|((p, v), g)| {
-                let _ = f.values_and_gradients(p, v, g);
-            });
+        // Equal lengths by construction.
+        let _ = f.par_values_and_gradients(points, &mut values, &mut gradients);
         (values, gradients.into_iter().map(norm).collect())
     };
     let (_, corner_slopes) = evaluate(&corners);

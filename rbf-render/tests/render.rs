@@ -149,12 +149,9 @@ proptest! {
         let f = fitted.interpolant.view();
         // Only closed surfaces (f < 0 all around): an open one is cut by the traced box, and
         // rays that enter the box inside the solid hit the cut, not the surface.
-        let closed = (0..64).all(|k| {
-            let t = k as f64 * 2.399_963;
-            let z = 1.0 - 2.0 * (k as f64 + 0.5) / 64.0;
-            let r = (1.0 - z * z).sqrt();
-            f.value(&[4.0 * r * t.cos(), 4.0 * z, 4.0 * r * t.sin()]) < 0.0
-        });
+        let closed = rbf_core::shapes::fibonacci_sphere(64)
+            .into_iter()
+            .all(|d| f.value(&d.map(|c| 4.0 * c)) < 0.0);
         prop_assume!(closed);
         let eye = [4.0 * origin_angle.cos(), 1.0, 4.0 * origin_angle.sin()];
         let camera = Camera { eye, target: [0.0; 3], up: [0.0, 1.0, 0.0], fov_degrees: 40.0, width: 24, height: 24 };

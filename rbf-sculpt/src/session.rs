@@ -92,14 +92,13 @@ impl Session {
     /// The paper's start: boundary constraints at the corners of a regular tetrahedron inscribed
     /// in the unit sphere, exterior constraints (value −1) at the corners of a cube of side 6.
     pub fn new() -> Result<Self, SculptError> {
-        let s = 1.0 / 3.0_f64.sqrt();
-        let mut items: Vec<Item> = [[s, s, s], [s, -s, -s], [-s, s, -s], [-s, -s, s]]
-            .map(Item::Boundary)
-            .to_vec();
-        for k in 0..8 {
-            let corner = [k & 1, (k >> 1) & 1, k >> 2].map(|b| if b == 1 { 3.0 } else { -3.0 });
-            items.push(Item::Exterior(corner, -1.0));
-        }
+        let items: Vec<Item> = rbf_core::shapes::sculpt_start()
+            .iter()
+            .map(|c| match c.kind {
+                rbf_core::ConstraintKind::Exterior => Item::Exterior(c.position, c.value),
+                _ => Item::Boundary(c.position),
+            })
+            .collect();
         Self::from_items(&items)
     }
 

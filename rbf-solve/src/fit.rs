@@ -9,7 +9,6 @@ use rbf_core::{
 
 use crate::lu::FullLu;
 use crate::memory::check_constraints_fit;
-use crate::parallel::par_values;
 use crate::projected::{Attempt, Projected};
 
 /// Which factorization to use.
@@ -175,7 +174,7 @@ fn run<const D: usize>(
         (&w, &p),
         (method, norm1 * inverse, refinements),
         |f, points, out| {
-            if par_values(&f.view(), points, out).is_err() {
+            if f.view().par_values(points, out).is_err() {
                 out.fill(f64::NAN);
             }
         },
@@ -187,7 +186,7 @@ fn residual<const D: usize>(system: &System<D>, w: &[f64], p: &[f64]) -> (Vec<f6
     let f = system.normalized_interpolant(w, p);
     let points = system.normalized_points();
     let mut fx = vec![0.0; points.len()];
-    if par_values(&f.view(), points, &mut fx).is_err() {
+    if f.view().par_values(points, &mut fx).is_err() {
         fx.fill(f64::NAN);
     }
     let rh: Vec<f64> = (0..points.len())

@@ -276,21 +276,21 @@ impl<const D: usize> Spread<D> {
 
 /// Each constraint's miss: the largest |f − h| / |∇f| over its rows.
 fn misses<const D: usize>(f: &Interpolant<f64, D>, system: &System<D>, count: usize) -> Vec<f64> {
-    const CHUNK: usize = 512;
-    let view = f.view();
     let points = system.points();
-    let per_row: Vec<f64> = points
-        .par_chunks(CHUNK)
-        .zip(system.values().par_chunks(CHUNK))
-        .flat_map_iter(|(p, h)| {
-            let mut v = vec![0.0; p.len()];
-            let mut g = vec![[0.0; D]; p.len()];
-            let _ = view.values_and_gradients(p, &mut v, &mut g);
-            v.into_iter().zip(g).zip(h).map(|((v, g), h)| {
-                let slope = g.iter().map(|x| x * x).sum::<f64>().sqrt();
-                let miss = (v - h).abs();
-                if miss == 0.0 { 0.0 } else { miss / slope }
-            })
+    let mut values = vec![0.0; points.len()];
+    let mut gradients = vec![[0.0; D]; points.len()];
+    // Equal lengths by construction.
+    let _ = f
+        .view()
+        .par_values_and_gradients(points, &mut values, &mut gradients);
+    let per_row: Vec<f64> = values
+        .par_iter()
+        .zip(&gradients)
+        .zip(system.values())
+        .map(|((v, g), h)| {
+            let slope = g.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let miss = (v - h).abs();
+            if miss == 0.0 { 0.0 } else { miss / slope }
         })
         .collect();
     let mut out = vec![0.0_f64; count];

@@ -37,10 +37,10 @@ mod greedy;
 mod householder;
 mod lu;
 mod memory;
-mod parallel;
+mod probe;
 mod projected;
 
 pub use fit::{SolveOptions, Strategy, fit, solve};
 pub use greedy::{GreedyReport, GreedyRound, GreedySettings, fit_greedy};
-pub use memory::{available_memory, check_constraints_fit, check_fits, memory_budget};
-pub use parallel::par_values;
+pub use memory::{check_constraints_fit, check_fits};
+pub use probe::{available_memory, memory_budget};

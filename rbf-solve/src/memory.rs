@@ -2,7 +2,7 @@
 
 use rbf_core::FitError;
 
-pub use rbf_core::{available_memory, memory_budget};
+use crate::probe::memory_budget;
 
 /// Refuses a system of `rows` rows when `matrices` dense `rows` × `rows` matrices of `f64`
 /// would take more than the [`memory_budget`] (or more than the address space can hold).

@@ -91,11 +91,11 @@ fn main() {
         let points = grid(grid_n);
         let mut out = vec![0.0; points.len()];
         let view = fit.interpolant.view();
-        rbf_solve::par_values(&view, &points, &mut out).expect("lengths");
+        view.par_values(&points, &mut out).expect("lengths");
         let mut times = Vec::new();
         for _ in 0..repeats {
             let t = Instant::now();
-            rbf_solve::par_values(&view, &points, &mut out).expect("lengths");
+            view.par_values(&points, &mut out).expect("lengths");
             times.push(t.elapsed().as_secs_f64());
         }
         let s = median(times);
@@ -198,20 +198,7 @@ fn mesh_workloads(repeats: usize, threads: usize, records: &mut Vec<String>) {
         );
     }
     // A model of 3000 constraint points: 1500 oriented points on a torus.
-    let cs: Vec<rbf_core::Constraint<3>> = (0..1500)
-        .map(|i| {
-            let golden = (5f64.sqrt() - 1.0) / 2.0;
-            let u = std::f64::consts::TAU * (i as f64 + 0.5) / 1500.0;
-            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
-            let n = [v.cos() * u.cos(), v.cos() * u.sin(), v.sin()];
-            let p = [
-                (1.0 + 0.35 * v.cos()) * u.cos(),
-                (1.0 + 0.35 * v.cos()) * u.sin(),
-                0.35 * v.sin(),
-            ];
-            rbf_core::Constraint::normal(p, n)
-        })
-        .collect();
+    let cs = rbf_core::shapes::torus(1500, 0.35);
     let settings = FitSettings::default();
     let fit = rbf_solve::fit(&cs, &settings).expect("fit");
     let model = rbf_core::Model {

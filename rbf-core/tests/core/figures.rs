@@ -2,10 +2,7 @@
 
 use rbf_core::{Constraint, FitSettings, Interpolant, fit};
 
-fn tetrahedron() -> [[f64; 3]; 4] {
-    let s = 1.0 / 3f64.sqrt();
-    [[s, s, s], [s, -s, -s], [-s, s, -s], [-s, -s, s]]
-}
+use rbf_core::shapes::tetrahedron;
 
 /// Where f changes sign along the ray from the origin in direction `d` (bisection).
 fn crossing(f: &Interpolant<f64, 3>, d: [f64; 3]) -> f64 {
@@ -23,12 +20,7 @@ fn crossing(f: &Interpolant<f64, 3>, d: [f64; 3]) -> f64 {
 }
 
 fn directions(n: usize) -> impl Iterator<Item = [f64; 3]> {
-    (0..n).map(move |i| {
-        let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-        let t = i as f64 * 2.399_963;
-        let r = (1.0 - z * z).sqrt();
-        [r * t.cos(), r * t.sin(), z]
-    })
+    rbf_core::shapes::fibonacci_sphere(n).into_iter()
 }
 
 fn radii(f: &Interpolant<f64, 3>) -> (f64, f64) {

@@ -5,15 +5,7 @@ use rbf_core::{Constraint, FitSettings, InterpolantView, Kernel, fit};
 #[test]
 fn f32_values_match_f64_to_f32_precision() {
     // 100 oriented points on a sphere, fitted in f64.
-    let cs: Vec<Constraint<3>> = (0..100)
-        .map(|i| {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / 100.0;
-            let t = i as f64 * 2.399_963;
-            let r = (1.0 - z * z).sqrt();
-            let p = [r * t.cos(), r * t.sin(), z];
-            Constraint::normal(p, p)
-        })
-        .collect();
+    let cs = rbf_core::shapes::sphere(100);
     let f64_model = fit(&cs, &FitSettings::default()).unwrap().interpolant;
     let f32_model = f64_model.cast::<f32>();
     let (wide, narrow) = (f64_model.view(), f32_model.view());

@@ -4,7 +4,6 @@
 use rbf_core::InterpolantView;
 
 use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
-use super::roots::par_values;
 use crate::hash::{FastMap, FastSet};
 
 /// The six face neighbours of a cell, and the corners (bits) on the shared face.
@@ -55,7 +54,10 @@ pub(crate) fn cells(
             }
         }
         let points: Vec<[f64; 3]> = needed.iter().map(|&p| lattice.point(p)).collect();
-        for (p, v) in needed.into_iter().zip(par_values(f, &points)) {
+        let mut values = vec![0.0; points.len()];
+        // Equal lengths by construction.
+        let _ = f.par_values(&points, &mut values);
+        for (p, v) in needed.into_iter().zip(values) {
             values.insert(p, v);
         }
         let mut next = Vec::new();

@@ -39,14 +39,8 @@ pub(crate) fn cells(
         .collect();
     let mut values = vec![0.0; count];
     let mut gradients = vec![[0.0; 3]; count];
-    points
-        .par_chunks(256)
-        .zip(values.par_chunks_mut(256))
-        .zip(gradients.par_chunks_mut(256))
-        .for_each(|((p, v), g)| {
-            // Equal lengths by construction.
-            let _ = f.values_and_gradients(p, v, g);
-        });
+    // Equal lengths by construction.
+    let _ = f.par_values_and_gradients(&points, &mut values, &mut gradients);
     let coarse = |i: [i64; 3]| (i[0] + coarse_n[0] * (i[1] + coarse_n[1] * i[2])) as usize;
 
     let total = (blocks[0] * blocks[1] * blocks[2]) as usize;

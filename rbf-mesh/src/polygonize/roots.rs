@@ -11,39 +11,6 @@ use crate::{MeshError, TriMesh};
 /// where f is exactly zero at a lattice point (the surface then touches that point).
 const END_MARGIN: f64 = 1e-6;
 
-/// Points per parallel task.
-const CHUNK: usize = 256;
-
-/// f at many points, in parallel.
-pub(crate) fn par_values(f: &InterpolantView<'_, f64, 3>, points: &[[f64; 3]]) -> Vec<f64> {
-    let mut out = vec![0.0; points.len()];
-    points
-        .par_chunks(CHUNK)
-        .zip(out.par_chunks_mut(CHUNK))
-        .for_each(|(p, o)| {
-            // Equal lengths by construction.
-            let _ = f.values(p, o);
-        });
-    out
-}
-
-/// f and ∇f at many points, in parallel.
-fn par_gradients(
-    f: &InterpolantView<'_, f64, 3>,
-    points: &[[f64; 3]],
-) -> (Vec<f64>, Vec<[f64; 3]>) {
-    let mut values = vec![0.0; points.len()];
-    let mut gradients = vec![[0.0; 3]; points.len()];
-    points
-        .par_chunks(CHUNK)
-        .zip(values.par_chunks_mut(CHUNK))
-        .zip(gradients.par_chunks_mut(CHUNK))
-        .for_each(|((p, v), g)| {
-            // Equal lengths by construction.
-            let _ = f.values_and_gradients(p, v, g);
-        });
-    (values, gradients)
-}
 
 /// Where the root search along one edge stands.
 #[derive(Clone, Copy)]
@@ -124,7 +91,10 @@ pub(crate) fn assemble(
             .iter()
             .map(|&i| at(ends[i], searches[i].t))
             .collect();
-        let (values, gradients) = par_gradients(f, &points);
+        let mut values = vec![0.0; points.len()];
+        let mut gradients = vec![[0.0; 3]; points.len()];
+        // Equal lengths by construction.
+        let _ = f.par_values_and_gradients(&points, &mut values, &mut gradients);
         let last = round + 1 == iterations.max(1);
         let mut still = Vec::with_capacity(pending.len());
         for ((&i, &v), &g) in pending.iter().zip(&values).zip(&gradients) {

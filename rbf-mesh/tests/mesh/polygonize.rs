@@ -7,13 +7,10 @@ use rbf_mesh::{
     surface_seeds,
 };
 
+use rbf_core::shapes::{fibonacci_sphere, tetrahedron_blob};
+
 fn fibonacci(n: usize) -> impl Iterator<Item = [f64; 3]> {
-    (0..n).map(move |i| {
-        let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-        let t = i as f64 * 2.399_963;
-        let r = (1.0 - z * z).sqrt();
-        [r * t.cos(), r * t.sin(), z]
-    })
+    fibonacci_sphere(n).into_iter()
 }
 
 fn model(constraints: Vec<Constraint<3>>) -> Model<3> {
@@ -34,29 +31,7 @@ fn sphere_at(centre: [f64; 3], n: usize) -> Vec<Constraint<3>> {
 }
 
 fn torus(n: usize) -> Vec<Constraint<3>> {
-    let golden = (5f64.sqrt() - 1.0) / 2.0;
-    (0..n)
-        .map(|i| {
-            let u = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
-            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
-            let normal = [v.cos() * u.cos(), v.cos() * u.sin(), v.sin()];
-            let p = [
-                (1.0 + 0.4 * v.cos()) * u.cos(),
-                (1.0 + 0.4 * v.cos()) * u.sin(),
-                0.4 * v.sin(),
-            ];
-            Constraint::normal(p, normal)
-        })
-        .collect()
-}
-
-fn tetrahedron_blob() -> Vec<Constraint<3>> {
-    let s = 1.0 / 3f64.sqrt();
-    let mut cs: Vec<Constraint<3>> = [[s, s, s], [s, -s, -s], [-s, s, -s], [-s, -s, s]]
-        .map(Constraint::boundary)
-        .to_vec();
-    cs.push(Constraint::interior([0.0; 3], 1.0));
-    cs
+    rbf_core::shapes::torus(n, 0.4)
 }
 
 /// Every property a polygonizer promises, checked on one mesh.

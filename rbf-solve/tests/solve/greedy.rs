@@ -7,11 +7,9 @@ use rbf_solve::{GreedySettings, fit, fit_greedy};
 /// `n` oriented points on a bumpy sphere (normals of the unit sphere, which is all the fit
 /// needs: it interpolates them).
 fn bumpy(n: usize) -> Vec<Constraint<3>> {
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
-            let (r, a) = ((1.0 - z * z).sqrt(), i as f64 * 2.399963229728653);
-            let u = [r * a.cos(), r * a.sin(), z];
+    rbf_core::shapes::fibonacci_sphere(n)
+        .into_iter()
+        .map(|u| {
             let s = 1.0 + 0.15 * (3.0 * u[0]).sin() * (2.0 * u[1]).cos();
             Constraint::normal(u.map(|x| s * x), u)
         })

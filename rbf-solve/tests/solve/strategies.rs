@@ -4,17 +4,7 @@ use proptest::prelude::*;
 use rbf_core::{Constraint, FitSettings, Kernel, SolveMethod, System};
 use rbf_solve::{SolveOptions, Strategy};
 
-fn sphere(n: usize) -> Vec<Constraint<3>> {
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let t = i as f64 * 2.399_963;
-            let r = (1.0 - z * z).sqrt();
-            let p = [r * t.cos(), r * t.sin(), z];
-            Constraint::normal(p, p)
-        })
-        .collect()
-}
+use rbf_core::shapes::sphere;
 
 fn solve(cs: &[Constraint<3>], s: &FitSettings, strategy: Strategy) -> rbf_core::Fit<3> {
     let system = System::new(cs, s).unwrap();
@@ -140,7 +130,7 @@ proptest! {
         let hmax = cs.iter().fold(0.0_f64, |m, c| m.max(c.value.abs()));
         let mut values = vec![0.0; n];
         let points: Vec<[f64; 3]> = cs.iter().map(|c| c.position).collect();
-        rbf_solve::par_values(&f.view(), &points, &mut values).unwrap();
+        f.view().par_values(&points, &mut values).unwrap();
         for (c, v) in cs.iter().zip(&values) {
             prop_assert!((v - c.value).abs() <= 1e-9 * hmax, "{v} vs {} ({k:?}, n = {n})", c.value);
             prop_assert!((f.value(&c.position) - v).abs() <= 1e-12 * hmax.max(v.abs()));

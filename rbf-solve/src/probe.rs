@@ -1,9 +1,10 @@
-//! How much memory the machine has free, for refusing work that would not fit (`std` only).
+//! How much memory the machine has free, for refusing work that would not fit before it is
+//! allocated. The only place in the workspace that asks the operating system.
 
 /// Bytes of memory available (Linux `MemAvailable`), if known.
 ///
 /// ```
-/// if let Some(bytes) = rbf_core::available_memory() {
+/// if let Some(bytes) = rbf_solve::available_memory() {
 ///     assert!(bytes > 0);
 /// }
 /// ```
@@ -19,7 +20,7 @@ pub fn available_memory() -> Option<u64> {
 /// systems and volumes compare against this, so that whatever they accept also runs.
 ///
 /// ```
-/// if let (Some(budget), Some(available)) = (rbf_core::memory_budget(), rbf_core::available_memory()) {
+/// if let (Some(budget), Some(available)) = (rbf_solve::memory_budget(), rbf_solve::available_memory()) {
 ///     assert!(budget < available);
 /// }
 /// ```

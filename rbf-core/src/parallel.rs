@@ -1,0 +1,69 @@
+//! Batch evaluation on every core (feature `rayon`): the points are cut into chunks, each
+//! evaluated by the vectorized batch routines of [`InterpolantView`] on its own thread.
+
+use rayon::prelude::*;
+
+use crate::{InterpolantView, LengthMismatch, Real};
+
+/// Points per parallel task: a chunk of 256 points costs 256·K kernel evaluations, enough to
+/// amortize a task's scheduling, and leaves enough tasks to balance the cores on small batches.
+const CHUNK: usize = 256;
+
+impl<T: Real + Send + Sync, const D: usize> InterpolantView<'_, T, D> {
+    /// `out[i] = f(points[i])` on every core of the rayon pool; the same numbers as
+    /// [`InterpolantView::values`].
+    ///
+    /// ```
+    /// use rbf_core::{InterpolantView, Kernel};
+    /// let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+    /// let points: Vec<[f64; 3]> = (0..1000).map(|i| [i as f64 / 1000.0, 0.0, 0.0]).collect();
+    /// let mut out = vec![0.0; points.len()];
+    /// f.par_values(&points, &mut out).unwrap();
+    /// assert_eq!(out[500], 1.0 - 0.125);
+    /// ```
+    pub fn par_values(&self, points: &[[T; D]], out: &mut [T]) -> Result<(), LengthMismatch> {
+        check_length("output", points.len(), out.len())?;
+        points
+            .par_chunks(CHUNK)
+            .zip(out.par_chunks_mut(CHUNK))
+            .try_for_each(|(p, o)| self.values(p, o))
+    }
+
+    /// f and ∇f on every core of the rayon pool; the same numbers as
+    /// [`InterpolantView::values_and_gradients`].
+    ///
+    /// ```
+    /// use rbf_core::{InterpolantView, Kernel};
+    /// let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+    /// let points = vec![[0.0, 2.0, 0.0]; 600];
+    /// let (mut v, mut g) = (vec![0.0; 600], vec![[0.0; 3]; 600]);
+    /// f.par_values_and_gradients(&points, &mut v, &mut g).unwrap();
+    /// assert_eq!((v[599], g[599]), (-7.0, [0.0, -12.0, 0.0]));
+    /// ```
+    pub fn par_values_and_gradients(
+        &self,
+        points: &[[T; D]],
+        values: &mut [T],
+        gradients: &mut [[T; D]],
+    ) -> Result<(), LengthMismatch> {
+        check_length("values", points.len(), values.len())?;
+        check_length("gradients", points.len(), gradients.len())?;
+        points
+            .par_chunks(CHUNK)
+            .zip(values.par_chunks_mut(CHUNK))
+            .zip(gradients.par_chunks_mut(CHUNK))
+            .try_for_each(|((p, v), g)| self.values_and_gradients(p, v, g))
+    }
+}
+
+fn check_length(what: &'static str, expected: usize, found: usize) -> Result<(), LengthMismatch> {
+    if expected == found {
+        Ok(())
+    } else {
+        Err(LengthMismatch {
+            what,
+            expected,
+            found,
+        })
+    }
+}
