@@ -1,4 +1,4 @@
-//! The iterative conversion of Yngve & Turk (paper 001, §3–§5): voxelize the mesh, then fit,
+//! The iterative conversion of Yngve & Turk (2002), §3–§5: voxelize the mesh, then fit,
 //! measure the two-way error between the goal's and the current surface's boundary voxels, and
 //! add constraints where it is largest, until the surface is within a voxel of the goal.
 
@@ -45,7 +45,7 @@ pub struct IterativeSettings {
     /// Candidates with less than this fraction of the iteration's maximum error are
     /// discarded (§5.3): 0.5.
     pub error_fraction: f64,
-    /// Regularization λ of every fit (paper 001, §6.3).
+    /// Regularization λ of every fit (Yngve & Turk 2002, §6.3).
     pub lambda: f64,
     /// Blocks of the shell whose corners agree in sign and stand farther from f = 0 than 1.5
     /// half-diagonals of the block, by the first-order estimate |f| / |∇f| at every corner, are

@@ -1,4 +1,4 @@
-//! Conversion by normal constraints (paper 000, §4.3).
+//! Conversion by normal constraints (Turk & O'Brien 2002, §4.3).
 
 use rbf_core::{Constraint, FitError, FitSettings, Model, NormalOffset};
 use rbf_mesh::TriMesh;

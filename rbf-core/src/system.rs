@@ -1,4 +1,4 @@
-//! The linear system of equation (8) in paper 000: expansion of constraints into rows,
+//! The linear system of equation (8) in Turk & O'Brien (2002): expansion of constraints into rows,
 //! validation, conditioning (centring and scaling) and assembly.
 
 use alloc::vec::Vec;

@@ -1,6 +1,6 @@
-//! Voxelizing a mesh (paper 001, §4.1): the fraction of each voxel inside the mesh, by casting
-//! parallel rays and counting signed crossings, with supersampling so that densities vary from
-//! 0 to 1 across the boundary.
+//! Voxelizing a mesh (Yngve & Turk 2002, §4.1): the fraction of each voxel inside the mesh, by
+//! casting parallel rays and counting signed crossings, with supersampling so that densities vary
+//! from 0 to 1 across the boundary.
 
 use rayon::prelude::*;
 

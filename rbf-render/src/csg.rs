@@ -1,5 +1,6 @@
 //! Constructive solid geometry on implicit functions that are positive inside: union is the
-//! maximum, intersection the minimum, and A minus B is min(f_A, −f_B) (paper 000, Figure 10).
+//! maximum, intersection the minimum, and A minus B is min(f_A, −f_B)
+//! (Turk & O'Brien 2002, Figure 10).
 
 use crate::RenderError;
 

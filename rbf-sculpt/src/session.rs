@@ -1,6 +1,6 @@
-//! Direct editing (paper 000, §5): a session of constraints and the interpolant through them,
-//! changed one edit at a time, each re-solved by updating the factorization, with undo and redo
-//! and floaters that follow the surface.
+//! Direct editing (Turk & O'Brien 2002, §5): a session of constraints and the interpolant through
+//! them, changed one edit at a time, each re-solved by updating the factorization, with undo and
+//! redo and floaters that follow the surface.
 
 use rbf_core::{Constraint, FitSettings, Interpolant, Kernel, Model};
 use rbf_render::{Csg, Ray, RenderSettings, first_hits};
@@ -342,7 +342,7 @@ impl Session {
 
     /// A normal handle at boundary constraint `index`: along the current outward normal, at
     /// `normal_length`, with the current value of f there, so that adding it changes nothing
-    /// until its tip is moved (paper 000, §5).
+    /// until its tip is moved (Turk & O'Brien 2002, §5).
     pub fn add_normal(&mut self, index: usize) -> Result<usize, SculptError> {
         let (item, _) = self.item(index)?;
         let Item::Boundary(p) = item else {
