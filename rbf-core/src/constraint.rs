@@ -40,9 +40,10 @@ impl ConstraintKind {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Constraint<const D: usize> {
-    /// What the constraint asks.
+    /// Boundary, interior, exterior or normal: decides the sign `value` must have.
     pub kind: ConstraintKind,
-    /// Where it applies.
+    /// The constrained point, in the model's coordinates (for a normal constraint, the point
+    /// on the surface).
     pub position: [f64; D],
     /// The value of f: 0 for boundary, positive for interior, negative for exterior; for a
     /// normal constraint, the value at its offset point (the point itself gets 0).

@@ -140,7 +140,7 @@ impl<const D: usize> System<D> {
         Ok(sys)
     }
 
-    /// The kernel.
+    /// The kernel φ: the settings' own, or else the default for D (r² log r in 2D, r³ in 3D).
     pub fn kernel(&self) -> Kernel {
         self.kernel
     }
