@@ -20,7 +20,8 @@ pub struct VoxelSettings {
     pub margin: usize,
     /// Sub-samples along each axis of a voxel (s³ per voxel, s² rays per voxel column). 4.
     pub supersampling: usize,
-    /// How inside is decided.
+    /// How a sample is classed inside: by ray crossings, by winding number, or `Auto` (the
+    /// default: rays when the mesh is watertight).
     pub method: VoxelMethod,
 }
 

@@ -20,7 +20,7 @@ use lattice::{Lattice, MAX_CELLS};
 /// How fine the lattice is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Resolution {
-    /// The edge length of a cube.
+    /// Edge length of a lattice cube, in the model's units.
     CellSize(f64),
     /// Cubes across the longest side of the box.
     Cells(usize),
@@ -80,9 +80,9 @@ pub enum BlockSkip {
 /// Figures of a polygonization.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PolygonizeStats {
-    /// The lattice point (0, 0, 0).
+    /// Position of lattice point (0, 0, 0), the box's lowest corner.
     pub origin: [f64; 3],
-    /// The edge length of a cube.
+    /// Edge length of a lattice cube, in the model's units.
     pub cell_size: f64,
     /// Cubes along x, y, z.
     pub cells: [usize; 3],
