@@ -13,7 +13,7 @@ use crate::RenderError;
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub enum Csg {
-    /// One model: inside where f > 0.
+    /// One model, by 0-based index into the views passed to the render: inside where f > 0.
     Model(usize),
     /// Inside any part.
     Union(Vec<Csg>),

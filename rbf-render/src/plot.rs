@@ -9,7 +9,7 @@ use crate::RenderError;
 use crate::draw::{Pixel, ring, segment};
 use crate::image::{Image, check_size};
 
-/// How to plot.
+/// Image size, region, colour map and line width of a 2D plot.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlotSettings {
     /// Width in pixels.

@@ -531,7 +531,7 @@ enum Slope {
         spread: f64,
         total: f64,
     },
-    /// A Lipschitz constant.
+    /// A bound L on |∇f| around the point: f moves by at most L·s within distance s.
     Constant(f64),
 }
 
