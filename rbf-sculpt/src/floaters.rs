@@ -89,7 +89,7 @@ impl Floaters {
         &self.points
     }
 
-    /// The settings.
+    /// The settings in force, with the spacing last set by [`Floaters::set_spacing`].
     pub fn settings(&self) -> FloaterSettings {
         self.settings
     }

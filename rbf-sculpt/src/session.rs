@@ -19,11 +19,11 @@ pub enum Item {
     Exterior([f64; 3], f64),
     /// A normal handle of boundary item `boundary`: f takes `value` at the free end `tip`.
     Normal {
-        /// The boundary item it belongs to.
+        /// Index of the boundary item it belongs to; deleting that item deletes the handle.
         boundary: usize,
-        /// The free end.
+        /// The handle's free end, in model coordinates; moving it tilts the surface.
         tip: [f64; 3],
-        /// f there.
+        /// The value f is held to at `tip`: f's value there when the handle was added.
         value: f64,
     },
 }
@@ -56,7 +56,7 @@ impl Item {
     }
 }
 
-/// What undo returns to.
+/// A snapshot for undo and redo: the items and their interpolant at one point in the history.
 #[derive(Clone, Debug)]
 struct State {
     items: Vec<Option<Item>>,
@@ -123,7 +123,7 @@ impl Session {
         })
     }
 
-    /// The current interpolant.
+    /// The interpolant through the current items, re-solved after every edit.
     pub fn interpolant(&self) -> &Interpolant<f64, 3> {
         &self.interpolant
     }
