@@ -211,7 +211,8 @@ fn torus(centre: [f64; 3], n: usize) -> Vec<Constraint<3>> {
         .collect()
 }
 
-/// A sphere of oriented points.
+/// `n` normal constraints spread evenly (a Fibonacci spiral) over the sphere of `radius`
+/// around `centre`, each with its outward normal.
 fn sphere(centre: [f64; 3], radius: f64, n: usize) -> Vec<Constraint<3>> {
     (0..n)
         .map(|i| {

@@ -108,7 +108,7 @@ enum Command {
         after_help = "Examples:\n  rbf completions bash > ~/.local/share/bash-completion/completions/rbf\n  rbf completions zsh > ~/.zfunc/_rbf"
     )]
     Completions {
-        /// The shell.
+        /// Shell to write the completion script for.
         shell: clap_complete::Shell,
     },
     /// Check a mesh: holes, non-manifold edges and vertices, orientation, components, genus.
