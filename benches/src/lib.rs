@@ -7,7 +7,7 @@ use rbf_core::{Constraint, FitSettings, Model};
 pub struct Rng(u64);
 
 impl Rng {
-    /// A generator from a seed.
+    /// A generator whose sequence is fixed by `seed`: the same seed gives the same numbers.
     pub fn new(seed: u64) -> Self {
         Self(seed)
     }

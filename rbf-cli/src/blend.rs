@@ -1,4 +1,4 @@
-//! `rbf blend`: one smooth surface from overlapping models (paper 000, §6).
+//! `rbf blend`: one smooth surface from overlapping models (Turk & O'Brien 2002, §6).
 
 use std::path::PathBuf;
 use std::time::Instant;

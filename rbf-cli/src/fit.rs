@@ -191,11 +191,11 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
     }
 }
 
-/// Where the constraints come from.
+/// What kind of file `rbf fit` reads its constraints from.
 enum Source {
-    /// A text constraint file.
+    /// A text constraint file, one constraint per line, parsed when fitted.
     Text,
-    /// A JSON constraint file.
+    /// A JSON constraint file, whose settings (kernel, λ, normal offset) were already applied.
     Constraints(ConstraintFile),
     /// A model file, whose constraints are solved again.
     Model(AnyModel),

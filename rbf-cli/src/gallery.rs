@@ -1,5 +1,5 @@
-//! `rbf gallery`: the figures of paper 000 that can be computed, each as a PNG with the models
-//! behind it, a `gallery.json` of what each figure measured, and an `index.html`.
+//! `rbf gallery`: the figures of Turk & O'Brien (2002) that can be computed, each as a PNG with the
+//! models behind it, a `gallery.json` of what each figure measured, and an `index.html`.
 
 use std::f64::consts::FRAC_1_SQRT_2;
 use std::fmt::Write as _;
@@ -345,7 +345,7 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     g.add("fig10", "Fig. 10: two implicit surfaces with shadows and reflections; the intersection and the difference of two spheres.", &pair(&pair(&left, &middle)?, &right)?, json!({}))?;
     say("fig10");
 
-    // Paper 001, Figure 3: the 2D refinement steps on a teapot silhouette, goal in grey.
+    // Yngve & Turk 2002, Figure 3: the 2D refinement steps on a teapot silhouette, goal in grey.
     let steps = crate::refine2d::refine(96, 6).map_err(|e| Failure::fit("teapot", &e))?;
     let shown: Vec<&crate::refine2d::Step> = [0, 1, 2, steps.len() - 1]
         .iter()

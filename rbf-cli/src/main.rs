@@ -1,4 +1,9 @@
 //! `rbf`: variational implicit surfaces from the shell.
+//!
+//! The methods are those of Greg Turk and James F. O'Brien, "Modelling with Implicit Surfaces
+//! that Interpolate", ACM Transactions on Graphics 21(4), 2002 (Turk & O'Brien 2002), and of
+//! Gary Yngve and Greg Turk, "Robust Creation of Implicit Surfaces from Polygonal Meshes", IEEE
+//! Transactions on Visualization and Computer Graphics 8(4), 2002 (Yngve & Turk 2002).
 
 mod blend;
 mod check;
@@ -74,10 +79,10 @@ enum Command {
     /// Voxelize a mesh: densities or signed distances on a grid, as a NumPy array.
     #[command(after_help = voxelize::HELP)]
     Voxelize(voxelize::VoxelizeArgs),
-    /// Blend overlapping models into one smooth surface (constraint selection, paper 000 §6).
+    /// Blend overlapping models into one smooth surface (constraint selection, Turk & O'Brien 2002, §6).
     #[command(after_help = blend::HELP)]
     Blend(blend::BlendArgs),
-    /// Replay a script of sculpting edits (paper 000 §5) and write the model.
+    /// Replay a script of sculpting edits (Turk & O'Brien 2002, §5) and write the model.
     #[command(after_help = sculpt::HELP)]
     Sculpt(sculpt::SculptArgs),
     /// Sample a model's surface evenly with floaters (positions and normals).
@@ -103,7 +108,7 @@ enum Command {
         after_help = "Examples:\n  rbf completions bash > ~/.local/share/bash-completion/completions/rbf\n  rbf completions zsh > ~/.zfunc/_rbf"
     )]
     Completions {
-        /// The shell.
+        /// Shell to write the completion script for.
         shell: clap_complete::Shell,
     },
     /// Check a mesh: holes, non-manifold edges and vertices, orientation, components, genus.

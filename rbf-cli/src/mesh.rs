@@ -36,7 +36,7 @@ pub(crate) struct MeshArgs {
     /// Edge length of a cube, in the model's units.
     #[arg(long, value_name = "H")]
     cell_size: Option<f64>,
-    /// How to find the surface.
+    /// Polygonizer: crawl the surface from its constraints, or sample the whole grid.
     #[arg(long, value_enum, default_value_t = Method::Continuation)]
     method: Method,
 }

@@ -1,4 +1,4 @@
-//! Paper 001, Figure 3, in 2D: the iterative refinement of Yngve & Turk on a pixel grid — fit,
+//! Yngve & Turk 2002, Figure 3, in 2D: their iterative refinement on a pixel grid — fit,
 //! compare the current curve's boundary pixels with the goal's, add constraints where the
 //! two-way error is largest (pruned as in §5.3) — for the gallery.
 

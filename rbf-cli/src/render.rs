@@ -77,7 +77,7 @@ pub(crate) struct RenderArgs {
     /// No checkered floor.
     #[arg(long)]
     no_ground: bool,
-    /// What bounds each step of a ray.
+    /// Bound on |∇f| that sizes each ray step: proved, estimated, or auto (proved if affordable).
     #[arg(long, value_enum, default_value_t = BoundArg::Auto)]
     bound: BoundArg,
     /// Step by the paper's estimate instead: the largest |∇f| over N samples of the box.

@@ -1,4 +1,4 @@
-//! Blending implicit surfaces by constraint selection (paper 000, §6): keep each model's
+//! Blending implicit surfaces by constraint selection (Turk & O'Brien 2002, §6): keep each model's
 //! constraints that lie outside every other model, and fit one interpolant through them all.
 //! Where the models overlap their constraints are dropped, so the new surface is free to bridge
 //! the crease smoothly; elsewhere it passes through the same constraints as before.

@@ -1,7 +1,7 @@
 //! How far a model's surface lies from a mesh, measured both ways on points spread over each.
 //!
-//! The loop's own error (paper 001, eq. 6–7) compares sets of boundary voxels, so it moves in
-//! whole voxels. This is the geometric distance instead: points spread by area over the mesh
+//! The loop's own error (Yngve & Turk 2002, eq. 6–7) compares sets of boundary voxels, so it moves
+//! in whole voxels. This is the geometric distance instead: points spread by area over the mesh
 //! are measured to the model's surface, and points spread over the model's surface to the
 //! mesh, each to the nearest point of the other.
 

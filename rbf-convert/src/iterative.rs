@@ -1,4 +1,4 @@
-//! The iterative conversion of Yngve & Turk (paper 001, §3–§5): voxelize the mesh, then fit,
+//! The iterative conversion of Yngve & Turk (2002), §3–§5: voxelize the mesh, then fit,
 //! measure the two-way error between the goal's and the current surface's boundary voxels, and
 //! add constraints where it is largest, until the surface is within a voxel of the goal.
 
@@ -45,7 +45,7 @@ pub struct IterativeSettings {
     /// Candidates with less than this fraction of the iteration's maximum error are
     /// discarded (§5.3): 0.5.
     pub error_fraction: f64,
-    /// Regularization λ of every fit (paper 001, §6.3).
+    /// Regularization λ of every fit (Yngve & Turk 2002, §6.3).
     pub lambda: f64,
     /// Blocks of the shell whose corners agree in sign and stand farther from f = 0 than 1.5
     /// half-diagonals of the block, by the first-order estimate |f| / |∇f| at every corner, are
@@ -81,22 +81,22 @@ impl Default for IterativeSettings {
     }
 }
 
-/// The figures of one iteration.
+/// Constraint counts, boundary errors and timings of one fit-and-refine iteration.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IterationReport {
     /// 1-based iteration.
     pub iteration: usize,
     /// Boundary constraints fitted this iteration.
     pub boundary: usize,
-    /// Interior constraints.
+    /// Interior constraints fitted this iteration.
     pub interior: usize,
-    /// Exterior constraints.
+    /// Exterior constraints fitted this iteration.
     pub exterior: usize,
     /// Two-way Hausdorff error between the boundary voxels, in voxels (equation 6).
     pub max_error: f64,
     /// Root-mean-square of the same errors, in voxels.
     pub rms_error: f64,
-    /// Seconds fitting.
+    /// Seconds solving this iteration's fit.
     pub fit_seconds: f64,
     /// Seconds evaluating f over the volume.
     pub evaluate_seconds: f64,
@@ -106,16 +106,16 @@ pub struct IterationReport {
     pub select_seconds: f64,
 }
 
-/// The figures of a conversion.
+/// The goal volume, every iteration's figures, and which iteration's model was returned.
 #[derive(Clone, Debug, PartialEq)]
 pub struct IterativeReport {
-    /// Voxels along x, y, z.
+    /// Voxels along x, y, z of the goal volume, margin included.
     pub shape: [usize; 3],
-    /// Edge of a voxel.
+    /// Edge length of a voxel, in the mesh's units.
     pub voxel_size: f64,
     /// Whether the mesh passed the watertightness check (else winding numbers were used).
     pub watertight: bool,
-    /// Every iteration.
+    /// Every iteration run, in order (the first has `iteration` 1).
     pub iterations: Vec<IterationReport>,
     /// The iteration whose model is returned (lowest maximum, then RMS error).
     pub best: usize,

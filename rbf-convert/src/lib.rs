@@ -1,6 +1,11 @@
 //! # rbf-convert
 //!
-//! Polygon meshes to variational implicit surfaces, and blends of implicit surfaces ([`blend`]).
+//! Polygon meshes to variational implicit surfaces, and blends of implicit surfaces ([`blend`]),
+//! after two papers: Greg Turk and James F. O'Brien, "Modelling with Implicit Surfaces that
+//! Interpolate", ACM Transactions on Graphics 21(4), 2002 (Turk & O'Brien 2002: normal
+//! constraints, §4.3, and blending, §6); and Gary Yngve and Greg Turk, "Robust Creation of
+//! Implicit Surfaces from Polygonal Meshes", IEEE Transactions on Visualization and Computer
+//! Graphics 8(4), 2002 (Yngve & Turk 2002: the iterative conversion).
 //!
 //! [`convert_normals`] is the method of Turk & O'Brien (2002, §4.3): a boundary constraint at
 //! each vertex and a normal constraint a small distance inside, against the vertex normal. For

@@ -1,4 +1,4 @@
-//! Conversion by normal constraints (paper 000, §4.3).
+//! Conversion by normal constraints (Turk & O'Brien 2002, §4.3).
 
 use rbf_core::{Constraint, FitError, FitSettings, Model, NormalOffset};
 use rbf_mesh::TriMesh;
@@ -34,7 +34,7 @@ impl Default for NormalSettings {
     }
 }
 
-/// What the conversion did.
+/// How many vertices became constraints, whether they were thinned, and the fit's figures.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NormalReport {
     /// Vertices of the mesh used by its triangles.
@@ -52,14 +52,14 @@ pub struct NormalReport {
     pub fit: rbf_core::FitReport,
 }
 
-/// Why a conversion failed.
+/// Why a mesh could not be converted (by either method) or models blended.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ConvertError {
     /// No vertex has a usable normal.
     #[error("no vertex of the mesh has a usable normal (all faces degenerate?)")]
     NoNormals,
-    /// The fit failed.
+    /// The fit of the chosen constraints failed; the error names the constraint or the cause.
     #[error(transparent)]
     Fit(#[from] FitError),
     /// The mesh could not be voxelized, or gave an empty volume.

@@ -1,4 +1,4 @@
-//! Figure 9 of paper 000: three overlapping tori blended into one closed surface.
+//! Turk & O'Brien 2002, Figure 9: three overlapping tori blended into one closed surface.
 
 use rbf_convert::blend;
 use rbf_core::{Constraint, FitSettings, Model};

@@ -1,4 +1,4 @@
-//! The iterative conversion (paper 001) on the shipped meshes at resolution 64.
+//! The iterative conversion of Yngve & Turk (2002) on the shipped meshes at resolution 64.
 
 use rbf_convert::{IterativeSettings, convert_iterative};
 use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_grid, read_mesh};

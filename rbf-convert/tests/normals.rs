@@ -1,4 +1,4 @@
-//! Normal-constraint conversion (paper 000, §4.3) on real and synthetic meshes.
+//! Normal-constraint conversion (Turk & O'Brien 2002, §4.3) on real and synthetic meshes.
 
 use rbf_convert::{NormalSettings, convert_normals};
 use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_continuation, read_mesh, surface_seeds};

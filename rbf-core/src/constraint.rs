@@ -1,4 +1,5 @@
-//! The constraints a user places: boundary, interior, exterior and normal (paper 000, §4).
+//! The constraints a user places: boundary, interior, exterior and normal
+//! (Turk & O'Brien 2002, §4).
 
 /// What a constraint asks of the surface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -12,7 +13,7 @@ pub enum ConstraintKind {
     /// The point is outside: f = value < 0.
     Exterior,
     /// The surface passes through the point with the given outward normal: f = 0 there and
-    /// f = value > 0 a small distance inside, against the normal (paper 000, §4.3).
+    /// f = value > 0 a small distance inside, against the normal (Turk & O'Brien 2002, §4.3).
     Normal,
 }
 
@@ -39,9 +40,10 @@ impl ConstraintKind {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Constraint<const D: usize> {
-    /// What the constraint asks.
+    /// Boundary, interior, exterior or normal: decides the sign `value` must have.
     pub kind: ConstraintKind,
-    /// Where it applies.
+    /// The constrained point, in the model's coordinates (for a normal constraint, the point
+    /// on the surface).
     pub position: [f64; D],
     /// The value of f: 0 for boundary, positive for interior, negative for exterior; for a
     /// normal constraint, the value at its offset point (the point itself gets 0).
@@ -52,7 +54,7 @@ pub struct Constraint<const D: usize> {
     /// [`crate::FitSettings::normal_offset`].
     pub offset: Option<f64>,
     /// Regularization λᵢ ≥ 0 added to the global λ on this constraint's diagonal entries
-    /// (paper 001, §6.3): the larger, the less exactly the surface meets it.
+    /// (Yngve & Turk 2002, §6.3): the larger, the less exactly the surface meets it.
     pub smoothing: f64,
 }
 

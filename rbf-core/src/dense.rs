@@ -15,7 +15,8 @@ use crate::{
 ///
 /// ```
 /// use rbf_core::{Constraint, FitSettings, fit};
-/// // Paper 000, Figure 2 (left): a tetrahedron of boundary points around one interior point.
+/// // Turk & O'Brien 2002, Figure 2 (left): a tetrahedron of boundary points around one
+/// // interior point.
 /// let s = 1.0 / 3f64.sqrt();
 /// let cs = [
 ///     Constraint::boundary([s, s, s]),

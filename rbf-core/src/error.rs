@@ -13,48 +13,49 @@ pub enum FitError {
     TooFewConstraints {
         /// Rows of the system (normal constraints count twice).
         rows: usize,
-        /// D + 1.
+        /// D + 1: the constant and the D linear coefficients.
         needed: usize,
-        /// The dimension.
+        /// Dimension D of the constraints, 2 or 3.
         dim: usize,
     },
     /// A coordinate, value, normal, offset or smoothing is NaN or infinite.
     #[error("constraint {constraint}: its {field} is not a finite number")]
     NonFinite {
-        /// Index of the constraint.
+        /// Index of the constraint in the caller's list, 0-based.
         constraint: usize,
-        /// Which field.
+        /// The field that is not finite: `"position"`, `"value"`, `"smoothing"`, `"normal"`,
+        /// `"offset"`, or `"offset point"` (the point the offset moves inside).
         field: &'static str,
     },
     /// A value contradicts the kind (an interior point with f ≤ 0, say), or a smoothing or
     /// offset is negative.
     #[error("constraint {constraint} ({}): {field} = {value} but {rule}", kind.name())]
     InvalidValue {
-        /// Index of the constraint.
+        /// Index of the constraint in the caller's list, 0-based.
         constraint: usize,
-        /// Its kind.
+        /// Kind of that constraint, which decides the sign its value must have.
         kind: ConstraintKind,
-        /// Which field.
+        /// The offending field: `"value"`, `"smoothing"` or `"offset"`.
         field: &'static str,
-        /// The value given.
+        /// The field's value as the caller gave it.
         value: f64,
-        /// What the value must satisfy.
+        /// The rule it breaks, as a phrase for the message ("smoothing must be ≥ 0").
         rule: &'static str,
     },
     /// A setting is out of its range.
     #[error("setting {name} = {value}: {rule}")]
     InvalidSetting {
-        /// Which setting.
+        /// Name of the setting in messages: `"lambda"` or `"normal offset"`.
         name: &'static str,
-        /// Its value.
+        /// The setting's value as given.
         value: f64,
-        /// What it must satisfy.
+        /// The rule it breaks, as a phrase for the message ("λ must be finite and ≥ 0").
         rule: &'static str,
     },
     /// A normal constraint's normal has zero length.
     #[error("normal constraint {constraint}: the normal has zero length, so it gives no direction")]
     ZeroNormal {
-        /// Index of the constraint.
+        /// Index of the constraint in the caller's list, 0-based.
         constraint: usize,
     },
     /// Two constraint points coincide (or nearly): the system would be singular.
@@ -62,11 +63,12 @@ pub enum FitError {
         "{first} and {second} are {distance:e} apart, closer than the minimum separation {minimum:e} (a fraction of the constraints' extent): merge them, move one, or lower the minimum separation"
     )]
     Coincident {
-        /// The first of the pair.
+        /// The row with the smaller index of the pair (a constraint, or a normal constraint's
+        /// offset point).
         first: RowSource,
-        /// The second.
+        /// The row with the larger index.
         second: RowSource,
-        /// Their distance.
+        /// Distance between the two points, in the constraints' own units.
         distance: f64,
         /// The smallest distance allowed: `FitSettings::min_separation` times the extent of the
         /// constraints (so a single far-away point makes every other pair "coincide").
@@ -101,7 +103,7 @@ pub enum FitError {
     TooLarge {
         /// Rows of the system.
         rows: usize,
-        /// Bytes it needs.
+        /// Bytes the dense matrix of the system needs.
         bytes: u64,
         /// Bytes that may be used (`rbf_solve::memory_budget`), when known.
         available: Option<u64>,
@@ -119,9 +121,9 @@ pub enum FitError {
         "the system is too ill-conditioned to meet the constraints (residual {residual:e} > {limit:e}, condition estimate {condition:e}): spread the constraints out or set λ > 0"
     )]
     IllConditioned {
-        /// Relative residual reached.
+        /// Residual reached, max|f(cᵢ) + λᵢwᵢ − hᵢ| relative to max|hᵢ|.
         residual: f64,
-        /// The accepted limit.
+        /// The largest accepted residual, `FitSettings::max_residual` (1e-6 by default).
         limit: f64,
         /// Estimated condition number.
         condition: f64,

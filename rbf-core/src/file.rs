@@ -58,7 +58,7 @@ pub struct ConstraintFile {
     /// Default offset of normal constraints; default `{"relative": 0.01}`.
     #[serde(default)]
     pub normal_offset: Option<NormalOffset>,
-    /// The constraints.
+    /// The constraints to fit, in file order.
     pub constraints: Vec<ConstraintRecord>,
 }
 
@@ -131,7 +131,8 @@ fn array<const D: usize>(v: &[f64], what: &str) -> Result<[f64; D], FileError> {
 }
 
 impl ConstraintRecord {
-    /// The record of a constraint.
+    /// The file record of `c`: `value` only for non-boundary kinds, `normal` only for normal
+    /// constraints.
     pub fn from_constraint<const D: usize>(c: &Constraint<D>) -> Self {
         Self {
             kind: c.kind,

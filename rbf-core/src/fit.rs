@@ -23,7 +23,7 @@ pub enum SolveMethod {
 pub struct FitReport {
     /// Rows K of the kernel block (constraint points).
     pub rows: usize,
-    /// The factorization used.
+    /// The factorization that produced the weights.
     pub method: SolveMethod,
     /// max |f(cᵢ) + λᵢwᵢ − hᵢ| / max |hᵢ|, measured on the returned interpolant.
     pub residual: f64,
@@ -38,6 +38,6 @@ pub struct FitReport {
 pub struct Fit<const D: usize> {
     /// The interpolant, in the caller's coordinates.
     pub interpolant: Interpolant<f64, D>,
-    /// How it was obtained.
+    /// Rows, factorization, residual, condition estimate and refinement steps of the fit.
     pub report: FitReport,
 }

@@ -78,23 +78,23 @@ impl<T: Real, const D: usize> Interpolant<T, D> {
         }
     }
 
-    /// The kernel φ.
+    /// The kernel φ the weights were fitted for.
     pub fn kernel(&self) -> Kernel {
         self.kernel
     }
-    /// The centres cⱼ.
+    /// Centres cⱼ of the radial basis functions, one per weight, in the model's coordinates.
     pub fn centres(&self) -> &[[T; D]] {
         &self.centres
     }
-    /// The weights wⱼ.
+    /// Weights wⱼ, one per centre, in the same order.
     pub fn weights(&self) -> &[T] {
         &self.weights
     }
-    /// The constant a.
+    /// Constant term a of the affine part a + b·x.
     pub fn constant(&self) -> T {
         self.constant
     }
-    /// The linear coefficients b.
+    /// Linear coefficients b of the affine part, one per coordinate.
     pub fn linear(&self) -> [T; D] {
         self.linear
     }

@@ -5,7 +5,7 @@ use crate::Real;
 /// The radial basis function φ of an interpolant.
 ///
 /// Each kernel is the fundamental solution of a thin-plate energy, so the interpolant minimizes
-/// that energy among all functions meeting the constraints (paper 000, §3):
+/// that energy among all functions meeting the constraints (Turk & O'Brien 2002, §3):
 ///
 /// | kernel | φ(r) | natural dimension | definiteness on polynomial-free weights |
 /// |---|---|---|---|

@@ -1,4 +1,5 @@
-//! Knot insertion (paper 000, §5): a new boundary constraint on the surface leaves it unchanged.
+//! Knot insertion (Turk & O'Brien 2002, §5): a new boundary constraint on the surface
+//! leaves it unchanged.
 
 use alloc::vec::Vec;
 

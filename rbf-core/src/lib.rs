@@ -1,7 +1,8 @@
 //! # rbf-core
 //!
-//! Variational implicit surfaces after Turk & O'Brien, "Modelling with Implicit Surfaces that
-//! Interpolate" (2002): a function f(x) = Σⱼ wⱼ φ(|x − cⱼ|) + a + b·x that takes given values
+//! Variational implicit surfaces after Greg Turk and James F. O'Brien, "Modelling with Implicit
+//! Surfaces that Interpolate", ACM Transactions on Graphics 21(4), 2002 (Turk & O'Brien 2002
+//! below): a function f(x) = Σⱼ wⱼ φ(|x − cⱼ|) + a + b·x that takes given values
 //! at given points (0 on the surface, positive inside, negative outside) and is as smooth as
 //! possible elsewhere. Its zero set is the surface (3D) or curve (2D).
 //!
@@ -14,10 +15,14 @@
 //! ([`InterpolantView::par_values`]). For large systems use the `rbf-solve` crate, which solves the same
 //! [`System`] with faer.
 //!
+//! The regularization λ (`FitSettings::lambda`) is from §6.3 of Gary Yngve and Greg Turk, "Robust
+//! Creation of Implicit Surfaces from Polygonal Meshes", IEEE Transactions on Visualization and
+//! Computer Graphics 8(4), 2002 (Yngve & Turk 2002 below).
+//!
 //! ```
 //! use rbf_core::{Constraint, FitSettings, fit};
 //!
-//! // A closed curve through four points around an interior point (paper 000, Figure 1).
+//! // A closed curve through four points around an interior point (Turk & O'Brien 2002, Figure 1).
 //! let constraints = [
 //!     Constraint::boundary([1.0, 0.0]),
 //!     Constraint::boundary([0.0, 1.0]),

@@ -13,9 +13,9 @@ use crate::{Constraint, FitReport, FitSettings, Interpolant};
 pub struct Model<const D: usize> {
     /// The constraints, in the caller's order.
     pub constraints: Vec<Constraint<D>>,
-    /// The settings of the fit.
+    /// The settings the constraints were fitted with (kernel, λ, normal offset, checks).
     pub settings: FitSettings,
-    /// The interpolant.
+    /// The fitted f, in the constraints' coordinates.
     pub interpolant: Interpolant<f64, D>,
     /// The fit's figures, when known.
     pub report: Option<FitReport>,

@@ -1,4 +1,4 @@
-//! The linear system of equation (8) in paper 000: expansion of constraints into rows,
+//! The linear system of equation (8) in Turk & O'Brien (2002): expansion of constraints into rows,
 //! validation, conditioning (centring and scaling) and assembly.
 
 use alloc::vec::Vec;
@@ -140,7 +140,7 @@ impl<const D: usize> System<D> {
         Ok(sys)
     }
 
-    /// The kernel.
+    /// The kernel φ: the settings' own, or else the default for D (r² log r in 2D, r³ in 3D).
     pub fn kernel(&self) -> Kernel {
         self.kernel
     }

@@ -10,7 +10,7 @@ use crate::Constraint;
 pub struct ParseError {
     /// 1-based line number.
     pub line: usize,
-    /// What was wrong.
+    /// What is wrong with the line, as a phrase for the user.
     pub message: alloc::string::String,
 }
 

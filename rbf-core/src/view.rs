@@ -35,11 +35,12 @@ pub struct InterpolantView<'a, T: Real, const D: usize> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("length mismatch: {what} has {found} entries where {expected} were expected")]
 pub struct LengthMismatch {
-    /// Which argument was wrong.
+    /// Name of the slice with the wrong length: `"weights"`, `"output"`, `"values"` or
+    /// `"gradients"`.
     pub what: &'static str,
-    /// The length it should have had.
+    /// The length it needed: the number of centres (weights) or of points (outputs).
     pub expected: usize,
-    /// The length it had.
+    /// The length the caller passed.
     pub found: usize,
 }
 
@@ -70,15 +71,15 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
         })
     }
 
-    /// The kernel φ.
+    /// The kernel φ the weights were fitted for.
     pub const fn kernel(&self) -> Kernel {
         self.kernel
     }
-    /// The centres cⱼ.
+    /// Centres cⱼ of the radial basis functions, one per weight, in the model's coordinates.
     pub const fn centres(&self) -> &'a [[T; D]] {
         self.centres
     }
-    /// The weights wⱼ.
+    /// Weights wⱼ, one per centre, in the same order.
     pub const fn weights(&self) -> &'a [T] {
         self.weights
     }

@@ -11,9 +11,9 @@ use crate::mesh::norm;
 pub struct MeshReport {
     /// Vertices referenced by triangles.
     pub vertices: usize,
-    /// Unreferenced vertices.
+    /// Vertices no triangle refers to (ignored by every other count).
     pub unused_vertices: usize,
-    /// Triangles.
+    /// All triangles, degenerate and duplicate ones included.
     pub triangles: usize,
     /// Distinct undirected edges.
     pub edges: usize,
@@ -31,7 +31,7 @@ pub struct MeshReport {
     pub duplicate_triangles: usize,
     /// Connected components (through shared vertices).
     pub components: usize,
-    /// V − E + F.
+    /// V − E + F over referenced vertices, edges and triangles: 2 for one closed sphere-like mesh.
     pub euler_characteristic: i64,
     /// Σ (2 − χᵢ)/2 over components, when the mesh is a closed orientable manifold.
     pub genus: Option<i64>,

@@ -1,5 +1,6 @@
 //! Exact Euclidean distance transforms (Felzenszwalb & Huttenlocher 2012): separable, linear
-//! time, for any initial cost, and the signed distance of a voxelized mesh (paper 001, §4.2).
+//! time, for any initial cost, and the signed distance of a voxelized mesh
+//! (Yngve & Turk 2002, §4.2).
 
 use rayon::prelude::*;
 

@@ -38,9 +38,9 @@ pub enum MeshError {
     IndexOutOfRange {
         /// 0-based triangle index.
         triangle: usize,
-        /// The index given.
+        /// The 0-based vertex index the triangle names, ≥ `vertices`.
         index: usize,
-        /// The number of vertices.
+        /// How many vertices the mesh has.
         vertices: usize,
     },
     /// Inconsistent parts (e.g. normals for a different number of vertices).
@@ -49,35 +49,35 @@ pub enum MeshError {
     /// A file could not be parsed.
     #[error("{}: {location}: {message}", file.display())]
     Parse {
-        /// The file.
+        /// Path of the file that failed to parse, as the caller gave it.
         file: PathBuf,
-        /// Where.
+        /// The line (text formats) or byte offset (binary formats) where parsing stopped.
         location: Location,
-        /// What was wrong.
+        /// What is wrong there, as a phrase for the user.
         message: String,
     },
     /// A file parsed, but the mesh in it is invalid.
     #[error("{}: {source}", file.display())]
     InFile {
-        /// The file.
+        /// Path of the file, as the caller gave it.
         file: PathBuf,
-        /// The problem.
+        /// Why [`crate::TriMesh::new`] refused the parsed vertices and triangles.
         #[source]
         source: Box<MeshError>,
     },
     /// The operating system refused a read or write.
     #[error("{}: {source}", file.display())]
     Io {
-        /// The file.
+        /// Path of the file being read or written, as the caller gave it.
         file: PathBuf,
-        /// The error.
+        /// The operating system's error.
         #[source]
         source: std::io::Error,
     },
     /// The extension names no format we know.
     #[error("{}: unknown mesh format (use .obj, .ply or .stl)", file.display())]
     UnknownFormat {
-        /// The file.
+        /// Path whose extension is not .obj, .ply or .stl.
         file: PathBuf,
     },
 }

@@ -4,7 +4,8 @@
 
 use std::hash::{BuildHasherDefault, Hasher};
 
-/// The hasher.
+/// The running 64-bit hash of the words written so far (multiply-rotate), used through
+/// `BuildHasherDefault`.
 #[derive(Default, Clone, Copy)]
 pub(crate) struct FastHasher(u64);
 

@@ -5,6 +5,12 @@
 //! orientation, components, genus, degenerate faces), and reading and writing OBJ, PLY and STL
 //! with errors that name the file and the line or byte.
 //!
+//! The polygonizers follow §7.1 of Greg Turk and James F. O'Brien, "Modelling with Implicit
+//! Surfaces that Interpolate", ACM Transactions on Graphics 21(4), 2002 (Turk & O'Brien 2002);
+//! the voxelizer and signed distance transform are those of §4.1–§4.2 of Gary Yngve and Greg Turk,
+//! "Robust Creation of Implicit Surfaces from Polygonal Meshes", IEEE Transactions on
+//! Visualization and Computer Graphics 8(4), 2002 (Yngve & Turk 2002).
+//!
 //! ```
 //! use rbf_mesh::TriMesh;
 //! // A tetrahedron, faces counter-clockwise from outside.

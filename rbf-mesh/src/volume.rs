@@ -6,7 +6,7 @@
 pub struct Volume<T> {
     /// The centre of voxel (0, 0, 0).
     pub origin: [f64; 3],
-    /// The edge length of a voxel.
+    /// Edge length of a (cubic) voxel, in the mesh's or model's units.
     pub voxel_size: f64,
     /// Voxels along x, y, z.
     pub shape: [usize; 3],

@@ -1,6 +1,6 @@
-//! Voxelizing a mesh (paper 001, §4.1): the fraction of each voxel inside the mesh, by casting
-//! parallel rays and counting signed crossings, with supersampling so that densities vary from
-//! 0 to 1 across the boundary.
+//! Voxelizing a mesh (Yngve & Turk 2002, §4.1): the fraction of each voxel inside the mesh, by
+//! casting parallel rays and counting signed crossings, with supersampling so that densities vary
+//! from 0 to 1 across the boundary.
 
 use rayon::prelude::*;
 
@@ -20,7 +20,8 @@ pub struct VoxelSettings {
     pub margin: usize,
     /// Sub-samples along each axis of a voxel (s³ per voxel, s² rays per voxel column). 4.
     pub supersampling: usize,
-    /// How inside is decided: rays for closed meshes, winding numbers for open ones.
+    /// How a sample is classed inside: by ray crossings, by winding number, or `Auto` (the
+    /// default: rays when the mesh is watertight).
     pub method: VoxelMethod,
     /// Bytes that the volume and its signed distance (24 a voxel) may take; a larger grid is
     /// refused before it is allocated. `None` refuses only grids beyond 2³³ voxels. The CLI and

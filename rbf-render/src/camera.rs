@@ -5,7 +5,7 @@ use crate::vector::{Vec3, add, cross, dot, norm, normalize, scale, sub};
 /// A ray: origin and unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
-    /// Where it starts.
+    /// Start of the ray, in world coordinates (the camera's eye for a primary ray).
     pub origin: [f64; 3],
     /// Unit direction.
     pub direction: [f64; 3],
@@ -26,7 +26,7 @@ pub struct Ray {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
-    /// Where the camera is.
+    /// Position of the camera's pinhole, in the models' coordinates.
     pub eye: [f64; 3],
     /// The point at the centre of the image.
     pub target: [f64; 3],

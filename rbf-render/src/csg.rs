@@ -1,5 +1,6 @@
 //! Constructive solid geometry on implicit functions that are positive inside: union is the
-//! maximum, intersection the minimum, and A minus B is min(f_A, −f_B) (paper 000, Figure 10).
+//! maximum, intersection the minimum, and A minus B is min(f_A, −f_B)
+//! (Turk & O'Brien 2002, Figure 10).
 
 use crate::RenderError;
 
@@ -12,7 +13,7 @@ use crate::RenderError;
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub enum Csg {
-    /// One model: inside where f > 0.
+    /// One model, by 0-based index into the views passed to the render: inside where f > 0.
     Model(usize),
     /// Inside any part.
     Union(Vec<Csg>),

@@ -17,21 +17,22 @@ pub enum RenderError {
     /// A CSG expression names a model that is not there.
     #[error("model {index} does not exist: there are {models} models")]
     NoSuchModel {
-        /// The index named.
+        /// The 0-based model index in the `Csg::Model` leaf, ≥ `models`.
         index: usize,
-        /// How many models there are.
+        /// How many model views were passed to the render.
         models: usize,
     },
     /// A union or intersection of nothing.
     #[error("a union or intersection needs at least one part")]
     EmptyCsg,
-    /// A setting out of range.
+    /// A setting out of range (samples per axis, plot bounds), or nothing to show; the message
+    /// says which.
     #[error("{0}")]
     Setting(String),
-    /// A mesh that cannot be drawn.
+    /// A mesh that cannot be drawn (no triangles, an index out of range, a non-finite vertex).
     #[error("mesh: {0}")]
     Mesh(String),
-    /// The PNG encoder failed.
+    /// The PNG encoder failed; its message.
     #[error("PNG encoding failed: {0}")]
     Png(String),
 }

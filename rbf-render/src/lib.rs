@@ -1,6 +1,8 @@
 //! # rbf-render
 //!
-//! Pictures of variational implicit surfaces without leaving the tool (paper 000, §7.2):
+//! Pictures of variational implicit surfaces without leaving the tool, as in §7.2 of Greg Turk
+//! and James F. O'Brien, "Modelling with Implicit Surfaces that Interpolate", ACM Transactions
+//! on Graphics 21(4), 2002 (Turk & O'Brien 2002 below):
 //! sphere tracing with a Lipschitz bound that is *guaranteed* per cell (from the kernel's
 //! derivatives and the weights, so that no ray passes through the surface) or the paper's
 //! sampled estimate; CSG union, intersection and difference of any number of models; Phong
@@ -13,7 +15,8 @@
 //! use rbf_core::{Constraint, FitSettings, fit};
 //! use rbf_render::{Camera, Csg, Object, RenderSettings, render};
 //!
-//! // The blob through a tetrahedron's corners around an interior point (paper 000, Figure 2).
+//! // The blob through a tetrahedron's corners around an interior point
+//! // (Turk & O'Brien 2002, Figure 2).
 //! let s = 0.57735;
 //! let constraints = [
 //!     Constraint::boundary([s, s, s]),

@@ -1,6 +1,6 @@
-//! Plots of 2D curves f = 0 with their constraints marked as in paper 000 (Figures 1, 4, 5):
-//! boundary constraints as circles, interior as +, exterior as −, normal constraints as short
-//! spikes; optionally f as a colour map.
+//! Plots of 2D curves f = 0 with their constraints marked as in Turk & O'Brien (2002),
+//! Figures 1, 4, 5: boundary constraints as circles, interior as +, exterior as −, normal
+//! constraints as short spikes; optionally f as a colour map.
 
 use rayon::prelude::*;
 use rbf_core::{Constraint, ConstraintKind, InterpolantView};
@@ -9,7 +9,7 @@ use crate::RenderError;
 use crate::draw::{Pixel, ring, segment};
 use crate::image::{Image, check_size};
 
-/// How to plot.
+/// Image size, region, colour map and line width of a 2D plot.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlotSettings {
     /// Width in pixels.

@@ -14,10 +14,10 @@ use crate::shade::{checker, phong, sky};
 use crate::tracer::{Lipschitz, TraceCounts, Tracer};
 use crate::vector::{Vec3, add, along, cross, dot, normalize, scale, sub};
 
-/// A solid with its looks.
+/// One solid in a scene: a CSG expression over the models, with its colour and reflectivity.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Object {
-    /// What it is.
+    /// The solid: one model, or a union, intersection or difference of models by index.
     pub shape: Csg,
     /// Linear RGB in [0, 1].
     pub colour: [f64; 3],
@@ -59,7 +59,7 @@ pub struct Light {
     pub intensity: f64,
 }
 
-/// How to render.
+/// Anti-aliasing, shadows, reflections, floor, lights and ray stepping of a render.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderSettings {
     /// Rays per pixel along each axis (anti-aliasing): 2 traces 4 rays a pixel.
@@ -74,7 +74,8 @@ pub struct RenderSettings {
     pub lights: Option<Vec<Light>>,
     /// Background at the top and at the horizon (linear RGB).
     pub background: [[f64; 3]; 2],
-    /// The step's Lipschitz constant.
+    /// Which bound on |∇f| sizes the ray steps: proved, estimated, or sampled; `Auto` by
+    /// default.
     pub lipschitz: Lipschitz,
     /// Cells along the longest side of each solid's box.
     pub cells: usize,
@@ -95,7 +96,7 @@ impl Default for RenderSettings {
     }
 }
 
-/// What a render did.
+/// Work and time of a render, and whether its steps were proved safe.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RenderStats {
     /// Rays traced (camera, shadow and reflection rays, per solid).
@@ -110,7 +111,8 @@ pub struct RenderStats {
     pub guaranteed: bool,
 }
 
-/// What a ray hit.
+/// What a ray hit first: nothing, the floor or an object (by index), with the distance along
+/// the ray.
 #[derive(Clone, Copy)]
 enum Hit {
     Nothing,

@@ -27,7 +27,8 @@ pub enum Lipschitz {
     /// 1.5 times the largest |∇f| at each cell's corners and centre, per cell: tight and fast,
     /// though a feature thinner than a cell can be stepped over.
     Estimated,
-    /// Paper 000, §7.2: the largest |∇f| over this many samples of the box, for the whole box.
+    /// Turk & O'Brien (2002), §7.2: the largest |∇f| over this many samples of the box, for the
+    /// whole box.
     Sampled(usize),
 }
 
@@ -530,7 +531,7 @@ enum Slope {
         spread: f64,
         total: f64,
     },
-    /// A Lipschitz constant.
+    /// A bound L on |∇f| around the point: f moves by at most L·s within distance s.
     Constant(f64),
 }
 

@@ -9,11 +9,11 @@ pub enum SculptError {
     /// The item is not of the kind the edit needs.
     #[error("item {index} is {is}, not {wanted}")]
     WrongKind {
-        /// The item.
+        /// Index of the item in the session's item list.
         index: usize,
-        /// What it is.
+        /// The item's kind as a phrase ("a boundary constraint", …).
         is: &'static str,
-        /// What the edit needs.
+        /// The kind the edit needs, as a phrase.
         wanted: &'static str,
     },
     /// A coordinate or value that is NaN or infinite.
@@ -25,9 +25,9 @@ pub enum SculptError {
     /// A pick ray that meets no surface.
     #[error("the ray from {origin:?} along {direction:?} meets no surface")]
     Missed {
-        /// Ray origin.
+        /// Start of the pick ray, in model coordinates.
         origin: [f64; 3],
-        /// Ray direction.
+        /// Direction of the pick ray (any length).
         direction: [f64; 3],
     },
     /// Nothing to undo or redo.

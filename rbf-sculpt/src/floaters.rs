@@ -1,5 +1,5 @@
-//! Floaters (Witkin & Heckbert 1994), as paper 000 §5 uses them: particles that stick to the
-//! zero set of f, repel each other to spread evenly, split where they are too sparse and die
+//! Floaters (Witkin & Heckbert 1994), as Turk & O'Brien (2002), §5, use them: particles that stick
+//! to the zero set of f, repel each other to spread evenly, split where they are too sparse and die
 //! where they are too dense, so that a near-constant density holds as the surface changes.
 
 use std::collections::HashMap;
@@ -89,7 +89,7 @@ impl Floaters {
         &self.points
     }
 
-    /// The settings.
+    /// The settings in force, with the spacing last set by [`Floaters::set_spacing`].
     pub fn settings(&self) -> FloaterSettings {
         self.settings
     }

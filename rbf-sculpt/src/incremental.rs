@@ -17,9 +17,9 @@ const BLOCK: usize = 256;
 /// One row of the system: f(position) = value.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Row<const D: usize> {
-    /// Where.
+    /// The constrained point, in the caller's coordinates.
     pub position: [f64; D],
-    /// The value of f there.
+    /// The value f must take at `position` (0 on the surface, positive inside).
     pub value: f64,
 }
 

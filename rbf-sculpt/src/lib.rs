@@ -1,6 +1,8 @@
 //! # rbf-sculpt
 //!
-//! Interactive modelling with interpolating implicit surfaces (Turk & O'Brien 2002, §5):
+//! Interactive modelling with interpolating implicit surfaces, after §5 of Greg Turk and
+//! James F. O'Brien, "Modelling with Implicit Surfaces that Interpolate", ACM Transactions on
+//! Graphics 21(4), 2002 (Turk & O'Brien 2002):
 //! a [`Session`] of constraints edited one at a time (add a boundary constraint where a ray
 //! meets the surface, move it, add and pull normal handles, delete, undo, redo), each edit
 //! re-solved by updating a factorization ([`IncrementalFit`]: O(n²) instead of a fresh O(n³)

@@ -10,26 +10,26 @@ use crate::{SculptError, Session};
 pub enum Edit {
     /// A boundary constraint at a point (the surface moves to pass through it).
     AddBoundary {
-        /// Where.
+        /// The point the surface must pass through, in model coordinates.
         position: [f64; 3],
     },
     /// A boundary constraint where a ray meets the surface (the surface does not move).
     PickBoundary {
-        /// Ray origin.
+        /// Start of the pick ray, in model coordinates.
         origin: [f64; 3],
-        /// Ray direction.
+        /// Direction of the pick ray (any length).
         direction: [f64; 3],
     },
-    /// An interior constraint.
+    /// An interior constraint: f takes a positive value at a point inside.
     AddInterior {
-        /// Where.
+        /// The constrained point, in model coordinates.
         position: [f64; 3],
         /// f there (> 0).
         value: f64,
     },
-    /// An exterior constraint.
+    /// An exterior constraint: f takes a negative value at a point outside.
     AddExterior {
-        /// Where.
+        /// The constrained point, in model coordinates.
         position: [f64; 3],
         /// f there (< 0).
         value: f64,
@@ -43,12 +43,12 @@ pub enum Edit {
     },
     /// A normal handle at a boundary constraint.
     AddNormal {
-        /// The boundary item.
+        /// Index of the boundary item that gets the handle.
         item: usize,
     },
     /// Move a normal handle's free end.
     MoveNormal {
-        /// The normal item.
+        /// Index of the normal item (the handle, not its boundary item).
         item: usize,
         /// New tip.
         to: [f64; 3],

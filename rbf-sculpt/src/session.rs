@@ -1,6 +1,6 @@
-//! Direct editing (paper 000, §5): a session of constraints and the interpolant through them,
-//! changed one edit at a time, each re-solved by updating the factorization, with undo and redo
-//! and floaters that follow the surface.
+//! Direct editing (Turk & O'Brien 2002, §5): a session of constraints and the interpolant through
+//! them, changed one edit at a time, each re-solved by updating the factorization, with undo and
+//! redo and floaters that follow the surface.
 
 use rbf_core::{Constraint, FitSettings, Interpolant, Kernel, Model};
 use rbf_render::{Csg, Ray, RenderSettings, first_hits};
@@ -19,11 +19,11 @@ pub enum Item {
     Exterior([f64; 3], f64),
     /// A normal handle of boundary item `boundary`: f takes `value` at the free end `tip`.
     Normal {
-        /// The boundary item it belongs to.
+        /// Index of the boundary item it belongs to; deleting that item deletes the handle.
         boundary: usize,
-        /// The free end.
+        /// The handle's free end, in model coordinates; moving it tilts the surface.
         tip: [f64; 3],
-        /// f there.
+        /// The value f is held to at `tip`: f's value there when the handle was added.
         value: f64,
     },
 }
@@ -56,7 +56,7 @@ impl Item {
     }
 }
 
-/// What undo returns to.
+/// A snapshot for undo and redo: the items and their interpolant at one point in the history.
 #[derive(Clone, Debug)]
 struct State {
     items: Vec<Option<Item>>,
@@ -122,7 +122,7 @@ impl Session {
         })
     }
 
-    /// The current interpolant.
+    /// The interpolant through the current items, re-solved after every edit.
     pub fn interpolant(&self) -> &Interpolant<f64, 3> {
         &self.interpolant
     }
@@ -341,7 +341,7 @@ impl Session {
 
     /// A normal handle at boundary constraint `index`: along the current outward normal, at
     /// `normal_length`, with the current value of f there, so that adding it changes nothing
-    /// until its tip is moved (paper 000, §5).
+    /// until its tip is moved (Turk & O'Brien 2002, §5).
     pub fn add_normal(&mut self, index: usize) -> Result<usize, SculptError> {
         let (item, _) = self.item(index)?;
         let Item::Boundary(p) = item else {

@@ -11,7 +11,7 @@ use crate::lu::FullLu;
 use crate::memory::check_constraints_fit;
 use crate::projected::{Attempt, Projected};
 
-/// Which factorization to use.
+/// Which factorization solves the system; [`Strategy::Auto`] falls back from the fastest.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Strategy {
@@ -30,7 +30,7 @@ pub enum Strategy {
 /// How rbf-solve solves (what rbf-core's [`FitSettings`] says is what to solve).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SolveOptions {
-    /// The factorization.
+    /// Which factorization to use, with or without fallbacks; `Auto` by default.
     pub strategy: Strategy,
     /// Most steps of iterative refinement (each costs two triangular solves and one
     /// evaluation of f at every centre). 3 by default.

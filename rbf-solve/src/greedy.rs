@@ -43,14 +43,15 @@ impl Default for GreedySettings {
     }
 }
 
-/// The figures of one round.
+/// Size, worst miss and timings of one round of [`fit_greedy`] (one fit, then adding the
+/// worst-met constraints).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GreedyRound {
     /// Constraints in this round's fit.
     pub constraints: usize,
     /// The largest miss over all constraints, as a fraction of the box's longest side.
     pub max_error: f64,
-    /// Seconds fitting.
+    /// Seconds solving this round's fit.
     pub fit_seconds: f64,
     /// Seconds measuring the misses.
     pub evaluate_seconds: f64,

@@ -1,7 +1,8 @@
 //! # rbf-solve
 //!
 //! Fitting variational implicit surfaces at scale. rbf-core builds and checks the system of
-//! equation (8) in Turk & O'Brien (2002); this crate solves it fast and honestly:
+//! equation (8) in Greg Turk and James F. O'Brien, "Modelling with Implicit Surfaces that
+//! Interpolate", ACM Transactions on Graphics 21(4), 2002; this crate solves it fast and honestly:
 //!
 //! - coordinates are centred and scaled into [−1, 1]ᴰ before assembly (conditioning);
 //! - the affine part is eliminated with the Householder QR of the polynomial block, leaving a

@@ -3,7 +3,7 @@
 //! an allocator or std. CI builds this crate for `thumbv7em-none-eabihf` (Cortex-M4F).
 //!
 //! ```
-//! // The blob of paper 000, Figure 2: inside at its centre, outside far away.
+//! // The blob of Turk & O'Brien 2002, Figure 2: inside at its centre, outside far away.
 //! assert!(rbf_embedded_example::inside([0.0, 0.0, 0.0]));
 //! assert!(!rbf_embedded_example::inside([2.0, 0.0, 0.0]));
 //! ```

@@ -1,4 +1,4 @@
-//! The examples of paper 000 that can be checked in numbers.
+//! The examples of Turk & O'Brien (2002) that can be checked in numbers.
 
 use rbf_core::{Constraint, FitSettings, Interpolant, fit};
 
@@ -63,7 +63,7 @@ fn section_5_start_of_a_sculpting_session_is_nearly_a_sphere() {
 #[test]
 fn figure_5_normal_constraints_bend_a_curve() {
     // Six boundary points on a circle; normal constraints point outward. Rotating one normal
-    // changes the curve near it (paper 000, Figure 5) and only a little elsewhere.
+    // changes the curve near it (Turk & O'Brien 2002, Figure 5) and only a little elsewhere.
     let circle: Vec<[f64; 2]> = (0..6)
         .map(|i| {
             let t = std::f64::consts::TAU * i as f64 / 6.0;

@@ -1,4 +1,5 @@
-//! Polygonizers (paper 000, §7.1): from an interpolant to a triangle mesh of its zero set.
+//! Polygonizers (Turk & O'Brien 2002, §7.1): from an interpolant to a triangle mesh
+//! of its zero set.
 //!
 //! Both walk the same cube lattice and split each cube into six Kuhn tetrahedra, which fit
 //! together across cubes and have no ambiguous cases: the output is watertight and manifold
@@ -19,7 +20,7 @@ use lattice::{Lattice, MAX_CELLS};
 /// How fine the lattice is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Resolution {
-    /// The edge length of a cube.
+    /// Edge length of a lattice cube, in the model's units.
     CellSize(f64),
     /// Cubes across the longest side of the box.
     Cells(usize),
@@ -69,8 +70,8 @@ pub enum BlockSkip {
     Proven,
     /// Also when f at the block's eight corners has one sign and |f| there exceeds half the
     /// block's diagonal (the farthest any point is from a corner) times 1.5 × the largest |∇f|
-    /// at the corners (the sampled-gradient heuristic of paper 000, §7.2). Can miss a component
-    /// smaller than a block. The default.
+    /// at the corners (the sampled-gradient heuristic of Turk & O'Brien 2002, §7.2). Can miss a
+    /// component smaller than a block. The default.
     Estimated,
     /// Sample every lattice point.
     Never,
@@ -79,9 +80,9 @@ pub enum BlockSkip {
 /// Figures of a polygonization.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PolygonizeStats {
-    /// The lattice point (0, 0, 0).
+    /// Position of lattice point (0, 0, 0), the box's lowest corner.
     pub origin: [f64; 3],
-    /// The edge length of a cube.
+    /// Edge length of a lattice cube, in the model's units.
     pub cell_size: f64,
     /// Cubes along x, y, z.
     pub cells: [usize; 3],

@@ -22,7 +22,7 @@ struct Search {
     f_hi: f64,
     /// Which end moved last (−1 lo, 1 hi), for the Illinois rule.
     side: i8,
-    /// The next point to evaluate.
+    /// Edge parameter in [0, 1] of the next point to evaluate (0 at one end, 1 at the other).
     t: f64,
     /// The gradient at the last point evaluated.
     gradient: [f64; 3],

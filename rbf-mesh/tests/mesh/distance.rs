@@ -81,7 +81,8 @@ fn signed_distance_of_a_torus_matches_the_analytic_distance() {
                 let p = sd.centre(i, j, k);
                 let ring = (p[0] * p[0] + p[2] * p[2]).sqrt() - 1.0;
                 let exact = 0.25 - (ring * ring + p[1] * p[1]).sqrt();
-                // Within four voxels of the surface, where the conversion of paper 001 uses the field.
+                // Within four voxels of the surface, where the conversion
+                // of Yngve & Turk (2002) uses the field.
                 if exact.abs() < 4.0 * sd.voxel_size {
                     worst = worst.max((sd.get(i, j, k) as f64 - exact).abs());
                 }
