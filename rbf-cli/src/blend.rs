@@ -7,7 +7,7 @@ use clap::Args;
 use rbf_core::{AnyModel, Model};
 
 use crate::failure::{BAD_INPUT, Failure, USAGE};
-use crate::io::{read_model, write_atomically};
+use crate::common::{read_model, write_atomically};
 
 pub(crate) const HELP: &str = "\
 Each model keeps the constraints that lie outside all the others; one interpolant is fitted

@@ -3,9 +3,9 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use rbf_mesh::{MeshError, read_mesh};
 
-use crate::failure::{BAD_INPUT, Failure};
+use crate::common::read_mesh;
+use crate::failure::Failure;
 
 #[derive(Args, Debug)]
 pub(crate) struct CheckArgs {
@@ -16,12 +16,8 @@ pub(crate) struct CheckArgs {
     json: bool,
 }
 
-pub(crate) fn mesh_failure(e: &MeshError) -> Failure {
-    Failure::new(BAD_INPUT, e.to_string())
-}
-
 pub(crate) fn run(args: &CheckArgs) -> Result<(), Failure> {
-    let mesh = read_mesh(&args.mesh).map_err(|e| mesh_failure(&e))?;
+    let mesh = read_mesh(&args.mesh)?;
     let r = mesh.check();
     let (lo, hi) = r.bounding_box;
     if args.json {

@@ -6,11 +6,9 @@ use std::time::Instant;
 
 use clap::Args;
 use rbf_convert::{CompareSettings, DistanceStats, surface_distance};
-use rbf_mesh::read_mesh;
 
-use crate::check::mesh_failure;
 use crate::failure::{BAD_INPUT, Failure, USAGE};
-use crate::io::read_model_3d;
+use crate::common::{read_mesh, read_model_3d};
 
 pub(crate) const HELP: &str = "\
 Spreads points by area over the mesh and measures each to the model's surface, then spreads
@@ -54,14 +52,14 @@ pub(crate) fn run(args: &CompareArgs, quiet: bool) -> Result<(), Failure> {
             "--samples, --resolution and --voxels must be at least 1".to_string(),
         ));
     }
-    let mesh = read_mesh(&args.mesh).map_err(|e| mesh_failure(&e))?;
+    let mesh = read_mesh(&args.mesh)?;
     let settings = CompareSettings {
         samples: args.samples,
         resolution: args.resolution,
         ..Default::default()
     };
     let start = Instant::now();
-    let spinner = crate::fit::spinner(quiet || args.json, "measuring".into());
+    let spinner = crate::common::spinner(quiet || args.json, "measuring".into());
     let result = surface_distance(&model.interpolant.view(), &mesh, &settings);
     spinner.finish_and_clear();
     let d = result.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;

@@ -10,11 +10,9 @@ use rbf_convert::{
     convert_normals,
 };
 use rbf_core::NormalOffset;
-use rbf_mesh::read_mesh;
 
-use crate::check::mesh_failure;
 use crate::failure::{BAD_INPUT, Failure, USAGE};
-use crate::io::write_atomically;
+use crate::common::{read_mesh, write_atomically};
 
 pub(crate) const HELP: &str = "\
 --method iterative (Yngve & Turk): voxelize the mesh (--resolution voxels along its longest side,
@@ -78,7 +76,7 @@ enum Method {
 }
 
 pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), Failure> {
-    let mesh = read_mesh(&args.mesh).map_err(|e| mesh_failure(&e))?;
+    let mesh = read_mesh(&args.mesh)?;
     let source = args.mesh.display().to_string();
     let failure = |e: ConvertError| match e {
         ConvertError::Fit(f) => Failure::fit(&source, &f),
@@ -101,7 +99,7 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                     format!("--tolerance must be a finite number ≥ 0, not {t}"),
                 ));
             }
-            let spinner = crate::fit::spinner(quiet, "fitting normal constraints".into());
+            let spinner = crate::common::spinner(quiet, "fitting normal constraints".into());
             let result = convert_normals(&mesh, &settings);
             spinner.finish_and_clear();
             let (model, report) = result.map_err(failure)?;
@@ -150,7 +148,7 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                     .unwrap_or_else(|_| ProgressStyle::default_bar()),
             );
             bar.set_message("voxelizing");
-            let result = convert_iterative(&mesh, &settings, |it| {
+            let result = convert_iterative(&mesh, &settings, |it, _| {
                 if verbose {
                     bar.suspend(|| {
                         eprintln!(

@@ -11,7 +11,7 @@ use rbf_mesh::{
 };
 
 use crate::failure::{BAD_INPUT, Failure};
-use crate::io::write_atomically;
+use crate::common::{SPOT, write_atomically};
 
 /// Radii at which the surface of f crosses rays from the origin in `directions`: where rays
 /// cast inward from radius 5 first meet it, by the renderer's sphere tracer.
@@ -34,36 +34,6 @@ fn crossings(f: &rbf_core::Interpolant<f64, 3>, directions: &[[f64; 3]]) -> Resu
     Ok(hits.into_iter().map(|t| FAR - t.unwrap_or(FAR)).collect())
 }
 
-/// Spot the cow (Keenan Crane, public domain; see NOTICE.md), inside the binary.
-pub(crate) const SPOT: &[u8] = include_bytes!("../assets/spot.obj");
-
-/// A mesh (left, rasterized) and a model (right, traced) from one camera, with shadows.
-pub(crate) fn mesh_and_model(
-    mesh: &rbf_mesh::TriMesh,
-    model: &Model<3>,
-    camera: &rbf_render::Camera,
-    style: rbf_render::MeshStyle,
-) -> Result<rbf_render::Image, Failure> {
-    let look = rbf_render::RenderSettings {
-        shadows: true,
-        ..Default::default()
-    };
-    let bad = |e: rbf_render::RenderError| Failure::new(BAD_INPUT, e.to_string());
-    let left = rbf_render::render_mesh(
-        mesh.positions(),
-        mesh.triangles(),
-        camera,
-        style,
-        [0.80, 0.36, 0.18],
-        &look,
-    )
-    .map_err(bad)?;
-    let views = [model.interpolant.view()];
-    let objects = [rbf_render::Object::new(rbf_render::Csg::Model(0), 0)];
-    let (right, _) = rbf_render::render(&views, &objects, camera, &look).map_err(bad)?;
-    rbf_render::Image::side_by_side(&left, &right).map_err(bad)
-}
-
 /// Converts the built-in mesh, polygonizes the result and renders both side by side.
 fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {
     let start = Instant::now();
@@ -73,7 +43,7 @@ fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {
         resolution: 96,
         ..Default::default()
     };
-    let (model, report) = rbf_convert::convert_iterative(&mesh, &settings, |_| {})
+    let (model, report) = rbf_convert::convert_iterative(&mesh, &settings, |_, _| {})
         .map_err(|e| Failure::new(BAD_INPUT, format!("spot: {e}")))?;
     let best = report.iterations[report.best - 1];
     let converted = start.elapsed().as_secs_f64();
@@ -93,7 +63,7 @@ fn convert_builtin(dir: &Path, say: &dyn Fn(String)) -> Result<(), Failure> {
     // The original and the implicit surface from the same camera.
     let (lo, hi) = mesh.bounding_box();
     let camera = rbf_render::Camera::orbit(lo, hi, 215.0, 20.0, 360, 360);
-    let png = mesh_and_model(&mesh, &model, &camera, rbf_render::MeshStyle::Smooth)?
+    let png = crate::render::mesh_and_model(&mesh, &model, &camera, rbf_render::MeshStyle::Smooth)?
         .to_png()
         .map_err(|e| Failure::new(BAD_INPUT, e.to_string()))?;
     let png_path = dir.join("spot.png");

@@ -7,7 +7,7 @@ use clap::{Args, ValueEnum};
 use rbf_core::{AnyModel, Interpolant};
 
 use crate::failure::Failure;
-use crate::io::{read_model, write_atomically};
+use crate::common::{read_model, write_atomically};
 
 pub(crate) const HELP: &str = "\
 --format rust writes constant arrays and a `const` InterpolantView over them: with rbf-core

@@ -35,6 +35,11 @@ impl Failure {
         Self::new(code, format!("{source}: {e}"))
     }
 
+    /// A mesh that could not be read, written or used; the message names the file and line.
+    pub(crate) fn mesh(e: &rbf_mesh::MeshError) -> Self {
+        Self::new(BAD_INPUT, e.to_string())
+    }
+
     /// A file that could not be read as JSON of the expected kind.
     pub(crate) fn file(source: &str, e: &FileError) -> Self {
         match e {

@@ -1,16 +1,15 @@
 //! `rbf fit`: constraints in, model file out.
 
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use indicatif::{ProgressBar, ProgressDrawTarget};
 use rbf_core::{AnyModel, Constraint, ConstraintFile, FitSettings, Model, NormalOffset, System};
 use rbf_solve::{GreedySettings, SolveOptions, Strategy};
 
 use crate::KernelArg;
 use crate::failure::{BAD_INPUT, Failure, USAGE};
-use crate::io::{read_text, write_atomically};
+use crate::common::{read_text, spinner, write_atomically};
 
 pub(crate) const HELP: &str = "\
 Input formats:
@@ -353,13 +352,3 @@ impl Job<'_> {
     }
 }
 
-/// A spinner on stderr while a long step runs, if stderr is a terminal and not `--quiet`.
-pub(crate) fn spinner(quiet: bool, message: String) -> ProgressBar {
-    let bar = ProgressBar::new_spinner();
-    if quiet {
-        bar.set_draw_target(ProgressDrawTarget::hidden());
-    }
-    bar.set_message(message);
-    bar.enable_steady_tick(Duration::from_millis(120));
-    bar
-}

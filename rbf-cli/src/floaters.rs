@@ -8,8 +8,7 @@ use clap::Args;
 use rbf_sculpt::{FloaterSettings, Floaters};
 
 use crate::failure::{Failure, NUMERICAL, USAGE};
-use crate::io::write_atomically;
-use crate::render::read_model;
+use crate::common::{read_model_3d, write_atomically};
 
 pub(crate) const HELP: &str = "\
 Floaters (Witkin & Heckbert 1994) stick to the surface f = 0, repel each other, split where they
@@ -36,7 +35,7 @@ pub(crate) fn run(args: &FloatersArgs, quiet: bool) -> Result<(), Failure> {
         return Err(Failure::new(USAGE, "-n must be 1 to 1000000"));
     }
     let start = Instant::now();
-    let model = read_model(&args.model)?;
+    let model = read_model_3d(&args.model, "floaters")?;
     let f = model.interpolant.view();
     let seeds = rbf_mesh::surface_seeds(&model);
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -57,7 +56,7 @@ pub(crate) fn run(args: &FloatersArgs, quiet: bool) -> Result<(), Failure> {
     let area = std::f64::consts::PI * diagonal * diagonal;
     let hexagon = 3.0_f64.sqrt() / 2.0;
     let mut spacing = (area / (args.count as f64 * hexagon)).sqrt();
-    let spinner = crate::fit::spinner(quiet, format!("settling about {} floaters", args.count));
+    let spinner = crate::common::spinner(quiet, format!("settling about {} floaters", args.count));
     let mut floaters = Floaters::new(
         &f,
         &seeds,

@@ -13,7 +13,8 @@ use rbf_render::{Camera, Csg, Image, Object, PlotSettings, RenderSettings, plot_
 use serde_json::{Value, json};
 
 use crate::failure::{BAD_INPUT, Failure};
-use crate::io::write_atomically;
+use crate::common::{SPOT, write_atomically};
+use crate::render::mesh_and_model;
 
 pub(crate) const HELP: &str = "\
 Figures 1, 2, 3, 4, 5, 6, 7, 8, 9 and 10 of Turk & O'Brien (2002) and Figure 3 of Yngve & Turk
@@ -157,6 +158,9 @@ fn sphere(centre: [f64; 3], radius: f64, n: usize) -> Vec<Constraint<3>> {
         .collect()
 }
 
+/// One figure: draws it into the gallery (its PNG, models and measured facts).
+type Figure = fn(&mut Gallery) -> Result<(), Failure>;
+
 pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     let start = Instant::now();
     std::fs::create_dir_all(&args.output)
@@ -166,7 +170,20 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
         size: args.size.clamp(16, 2048),
         entries: Vec::new(),
     };
-    let bar = indicatif::ProgressBar::new(10);
+    let figures: [(&str, Figure); 11] = [
+        ("fig1", figure_1),
+        ("fig2", figure_2),
+        ("fig3-fig6", figures_3_and_6),
+        ("fig4", figure_4),
+        ("fig5", figure_5),
+        ("fig7", figure_7),
+        ("fig8", figure_8),
+        ("fig9", figure_9),
+        ("fig10", figure_10),
+        ("yngve-fig3", yngve_turk_figure_3),
+        ("index", write_index),
+    ];
+    let bar = indicatif::ProgressBar::new(figures.len() as u64);
     if quiet {
         bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
@@ -174,12 +191,25 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} figures, last {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let say = |s: &str| {
+    for (name, draw) in figures {
+        draw(&mut g)?;
         bar.inc(1);
-        bar.set_message(s.to_string());
-    };
+        bar.set_message(name);
+    }
+    bar.finish_and_clear();
+    if !quiet {
+        eprintln!(
+            "wrote {} figures to {} in {:.1} s",
+            g.entries.len(),
+            args.output.display(),
+            start.elapsed().as_secs_f64()
+        );
+    }
+    Ok(())
+}
 
-    // Figure 1: four zero-valued and one positive constraint; then three more zero-valued.
+/// Figure 1: four zero-valued and one positive constraint; then three more zero-valued.
+fn figure_1(g: &mut Gallery) -> Result<(), Failure> {
     let mut c: Vec<Constraint<2>> = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]
         .map(Constraint::boundary)
         .to_vec();
@@ -192,22 +222,24 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     let facts =
         json!({"boundary_residual": boundary_residual(&left).max(boundary_residual(&right))});
     let image = pair(&g.plot(&left)?, &g.plot(&right)?)?;
-    g.add("fig1", "Fig. 1: a curve through four zero-valued constraints around a positive one; refined by three more.", &image, facts)?;
-    say("fig1");
+    g.add("fig1", "Fig. 1: a curve through four zero-valued constraints around a positive one; refined by three more.", &image, facts)
+}
 
-    // Figure 2: the tetrahedron blob; a branching object from prisms.
+/// Figure 2: the tetrahedron blob; a branching object from prisms.
+fn figure_2(g: &mut Gallery) -> Result<(), Failure> {
     let blob = fit(shapes::tetrahedron_blob())?;
     let tree = fit(shapes::branching(1))?;
     g.save("fig2-left", &blob)?;
     g.save("fig2-right", &tree)?;
     let facts = json!({"left": g.topology(&blob)?, "right": g.topology(&tree)?});
     let image = pair(&g.one(&blob)?, &g.one(&tree)?)?;
-    g.add("fig2", "Fig. 2: zero-valued constraints at a tetrahedron's corners around a positive one; a branching shape from prisms.", &image, facts)?;
-    say("fig2");
+    g.add("fig2", "Fig. 2: zero-valued constraints at a tetrahedron's corners around a positive one; a branching shape from prisms.", &image, facts)
+}
 
-    // Figures 3 and 6: a polygonal surface and the implicit surface through its vertices with
-    // their normals (the built-in cow stands in for the paper's fist and object).
-    let mesh = rbf_mesh::read_mesh_bytes(Path::new("spot.obj"), crate::demo::SPOT).map_err(bad)?;
+/// Figures 3 and 6: a polygonal surface and the implicit surface through its vertices with
+/// their normals (the built-in cow stands in for the paper's fist and object).
+fn figures_3_and_6(g: &mut Gallery) -> Result<(), Failure> {
+    let mesh = rbf_mesh::read_mesh_bytes(Path::new("spot.obj"), SPOT).map_err(bad)?;
     let settings = rbf_convert::NormalSettings {
         max_vertices: 800,
         ..Default::default()
@@ -216,12 +248,13 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     g.save("fig3-fig6", &cow)?;
     let (lo, hi) = mesh.bounding_box();
     let camera = Camera::orbit(lo, hi, 215.0, 20.0, g.size, g.size);
-    let image = crate::demo::mesh_and_model(&mesh, &cow, &camera, rbf_render::MeshStyle::Flat)?;
+    let image = mesh_and_model(&mesh, &cow, &camera, rbf_render::MeshStyle::Flat)?;
     let facts = json!({"vertices_used": cow.constraints.len(), "surface": g.topology(&cow)?});
-    g.add("fig3-fig6", "Figs. 3 and 6: a polygonal surface (left) and the implicit surface through 800 of its vertices and their normals (right).", &image, facts)?;
-    say("fig3-fig6");
+    g.add("fig3-fig6", "Figs. 3 and 6: a polygonal surface (left) and the implicit surface through 800 of its vertices and their normals (right).", &image, facts)
+}
 
-    // Figure 4: exterior constraints around two, then more, zero-valued constraints.
+/// Figure 4: exterior constraints around two, then more, zero-valued constraints.
+fn figure_4(g: &mut Gallery) -> Result<(), Failure> {
     let ring: Vec<Constraint<2>> = (0..8)
         .map(|k| {
             let a = std::f64::consts::TAU * k as f64 / 8.0;
@@ -232,25 +265,25 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     c.extend([[-0.8, 0.0], [0.8, 0.0]].map(Constraint::boundary));
     let left = fit(c)?;
     let mut c = ring;
-    c.extend(
-        [
-            [-1.0, 0.0],
-            [0.0, 0.6],
-            [1.0, 0.2],
-            [0.4, -0.9],
-            [-0.5, -0.5],
-            [0.5, 1.2],
-        ]
-        .map(Constraint::boundary),
-    );
+    let six = [
+        [-1.0, 0.0],
+        [0.0, 0.6],
+        [1.0, 0.2],
+        [0.4, -0.9],
+        [-0.5, -0.5],
+        [0.5, 1.2],
+    ];
+    c.extend(six.map(Constraint::boundary));
     let right = fit(c)?;
     g.save("fig4-left", &left)?;
     g.save("fig4-right", &right)?;
     let facts = json!({"boundary_residual": boundary_residual(&left).max(boundary_residual(&right)), "inside_between_the_two": left.interpolant.value(&[0.0, 0.0]) > 0.0});
-    g.add("fig4", "Fig. 4: eight exterior constraints around two zero-valued constraints (an ellipse-like curve), and around six.", &pair(&g.plot(&left)?, &g.plot(&right)?)?, facts)?;
-    say("fig4");
+    let image = pair(&g.plot(&left)?, &g.plot(&right)?)?;
+    g.add("fig4", "Fig. 4: eight exterior constraints around two zero-valued constraints (an ellipse-like curve), and around six.", &image, facts)
+}
 
-    // Figure 5: boundary and normal constraints; one normal (north-west) turned.
+/// Figure 5: boundary and normal constraints; one normal (north-west) turned.
+fn figure_5(g: &mut Gallery) -> Result<(), Failure> {
     let normals = |nw: [f64; 2]| -> Vec<Constraint<2>> {
         vec![
             Constraint::normal([1.0, 0.0], [1.0, 0.0]),
@@ -266,25 +299,28 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     g.save("fig5-right", &right)?;
     let facts =
         json!({"boundary_residual": boundary_residual(&left).max(boundary_residual(&right))});
-    g.add("fig5", "Fig. 5: the same boundary and normal constraints, with the north-west normal turned (right).", &pair(&g.plot(&left)?, &g.plot(&right)?)?, facts)?;
-    say("fig5");
+    let image = pair(&g.plot(&left)?, &g.plot(&right)?)?;
+    g.add("fig5", "Fig. 5: the same boundary and normal constraints, with the north-west normal turned (right).", &image, facts)
+}
 
-    // Figure 7: the sculpting start and the sculpted torus.
-    let start_session = rbf_sculpt::Session::new().map_err(bad)?;
+/// Figure 7: the sculpting start and the torus sculpted from it by a script of edits.
+fn figure_7(g: &mut Gallery) -> Result<(), Failure> {
+    let start = rbf_sculpt::Session::new().map_err(bad)?;
     let mut session = rbf_sculpt::Session::new().map_err(bad)?;
-    let script = rbf_sculpt::parse_script(include_str!("../../rbf-sculpt/scripts/torus.json"))
-        .map_err(bad)?;
+    let script = rbf_sculpt::parse_script(rbf_sculpt::TORUS_SCRIPT).map_err(bad)?;
     for e in &script {
         session.apply(e).map_err(bad)?;
     }
-    let (a, b) = (start_session.model(), session.model());
+    let (a, b) = (start.model(), session.model());
     g.save("fig7-left", &a)?;
     g.save("fig7-right", &b)?;
     let facts = json!({"left": g.topology(&a)?, "right": g.topology(&b)?, "edits": script.len()});
-    g.add("fig7", "Fig. 7: the sculpting start (four boundary constraints in a cube of exterior ones) and a torus sculpted from it by a script of edits.", &pair(&g.one(&a)?, &g.one(&b)?)?, facts)?;
-    say("fig7");
+    let image = pair(&g.one(&a)?, &g.one(&b)?)?;
+    g.add("fig7", "Fig. 7: the sculpting start (four boundary constraints in a cube of exterior ones) and a torus sculpted from it by a script of edits.", &image, facts)
+}
 
-    // Figure 8: changing a normal constraint.
+/// Figure 8: changing a normal constraint.
+fn figure_8(g: &mut Gallery) -> Result<(), Failure> {
     let mut session = rbf_sculpt::Session::new().map_err(bad)?;
     let top = session.add_boundary([0.0, 1.3, 0.0]).map_err(bad)?;
     let before = session.model();
@@ -294,15 +330,17 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     g.save("fig8-left", &before)?;
     g.save("fig8-right", &after)?;
     let facts = json!({"left": g.topology(&before)?, "right": g.topology(&after)?});
+    let image = pair(&g.one(&before)?, &g.one(&after)?)?;
     g.add(
         "fig8",
         "Fig. 8: a surface before and after its normal constraint at the top is pulled sideways.",
-        &pair(&g.one(&before)?, &g.one(&after)?)?,
+        &image,
         facts,
-    )?;
-    say("fig8");
+    )
+}
 
-    // Figure 9: three tori and their soft union by constraint selection.
+/// Figure 9: three tori and their soft union by constraint selection.
+fn figure_9(g: &mut Gallery) -> Result<(), Failure> {
     let tori: Vec<Model<3>> = [[-1.4, 0.0, 0.0], [0.0, 0.0, 0.0], [1.4, 0.0, 0.0]]
         .iter()
         .map(|&c| fit(torus(c, 300)))
@@ -317,10 +355,12 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     };
     let left = g.shoot(&refs, &objects, &look)?;
     let facts = json!({"blend": g.topology(&blend)?, "kept": report.kept, "total": report.total});
-    g.add("fig9", "Fig. 9: three overlapping tori (left) and their soft union by constraint selection (right).", &pair(&left, &g.one(&blend)?)?, facts)?;
-    say("fig9");
+    let image = pair(&left, &g.one(&blend)?)?;
+    g.add("fig9", "Fig. 9: three overlapping tori (left) and their soft union by constraint selection (right).", &image, facts)
+}
 
-    // Figure 10: two surfaces with shadows and reflections; CSG intersection and subtraction.
+/// Figure 10: two surfaces with shadows and reflections; CSG intersection and subtraction.
+fn figure_10(g: &mut Gallery) -> Result<(), Failure> {
     let a = fit(sphere([-0.6, 0.0, 0.0], 0.8, 200))?;
     let b = fit(torus([0.7, 0.0, 0.0], 300))?;
     g.save("fig10-a", &a)?;
@@ -342,58 +382,62 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
     };
     let middle = g.shoot(&[&a, &c], &[Object::new(meet, 1)], &look)?;
     let right = g.shoot(&[&a, &c], &[Object::new(cut, 0)], &look)?;
-    g.add("fig10", "Fig. 10: two implicit surfaces with shadows and reflections; the intersection and the difference of two spheres.", &pair(&pair(&left, &middle)?, &right)?, json!({}))?;
-    say("fig10");
+    let image = pair(&pair(&left, &middle)?, &right)?;
+    g.add("fig10", "Fig. 10: two implicit surfaces with shadows and reflections; the intersection and the difference of two spheres.", &image, json!({}))
+}
 
-    // Yngve & Turk 2002, Figure 3: the 2D refinement steps on a teapot silhouette, goal in grey.
-    let steps = crate::refine2d::refine(96, 6).map_err(|e| Failure::fit("teapot", &e))?;
-    let shown: Vec<&crate::refine2d::Step> = [0, 1, 2, steps.len() - 1]
-        .iter()
-        .map(|&k| &steps[k.min(steps.len() - 1)])
-        .collect();
-    let mut panels = Vec::new();
-    for (k, step) in shown.iter().enumerate() {
-        g.save(&format!("yngve-fig3-step{}", k + 1), &step.model)?;
-        let settings = PlotSettings {
+/// Yngve & Turk (2002), Figure 3: the iterative conversion in 2D on a teapot silhouette, steps
+/// 1, 2, 3 and the last, the goal in grey under each curve.
+fn yngve_turk_figure_3(g: &mut Gallery) -> Result<(), Failure> {
+    let bounds = ([-1.7, -1.2], [1.9, 1.2]);
+    let settings = rbf_convert::IterativeSettings {
+        resolution: 96,
+        initial_constraints: 12,
+        max_iterations: 6,
+        ..Default::default()
+    };
+    let mut steps: Vec<(Model<2>, f64, f64)> = Vec::new();
+    rbf_convert::convert_iterative_2d(
+        shapes::teapot_silhouette,
+        bounds,
+        &settings,
+        |it, model| steps.push((model.clone(), it.max_error, it.rms_error)),
+    )
+    .map_err(|e| match e {
+        rbf_convert::ConvertError::Fit(f) => Failure::fit("teapot", &f),
+        other => bad(other),
+    })?;
+    let last = steps.len().saturating_sub(1);
+    let mut strip: Option<Image> = None;
+    for (k, &step) in [0, 1, 2, last].iter().enumerate() {
+        let Some((model, _, _)) = steps.get(step.min(last)) else {
+            continue;
+        };
+        g.save(&format!("yngve-fig3-step{}", k + 1), model)?;
+        let plot = PlotSettings {
             width: g.size,
             height: g.size * 2 / 3,
-            bounds: Some(([-1.7, -1.2], [1.9, 1.2])),
+            bounds: Some(bounds),
             ..Default::default()
         };
-        let mut image = plot_curve(
-            &step.model.interpolant.view(),
-            &step.model.constraints,
-            &settings,
-        )
-        .map_err(bad)?;
-        // The goal under the curve, in grey.
-        let (w, h) = (f64::from(image.width()), f64::from(image.height()));
-        for y in 0..image.height() {
-            for x in 0..image.width() {
-                let p = [
-                    -1.7 + (f64::from(x) + 0.5) / w * 3.6,
-                    1.2 - (f64::from(y) + 0.5) / h * 2.4,
-                ];
-                if crate::refine2d::goal(p) {
-                    let c = image.get(x, y);
-                    image.set(x, y, c.map(|v| v * 0.82));
-                }
-            }
-        }
-        panels.push(image);
+        let mut panel =
+            plot_curve(&model.interpolant.view(), &model.constraints, &plot).map_err(bad)?;
+        panel.darken_region(bounds, 0.82, shapes::teapot_silhouette);
+        strip = Some(match strip {
+            Some(s) => pair(&s, &panel)?,
+            None => panel,
+        });
     }
-    let mut strip = panels[0].clone();
-    for p in &panels[1..] {
-        strip = pair(&strip, p)?;
-    }
-    let errors: Vec<Value> = steps.iter().map(|s| json!({"max": s.max_error, "rms": s.rms_error, "constraints": s.model.constraints.len()})).collect();
-    g.add("yngve-fig3", "Yngve & Turk, Fig. 3: iterative refinement in 2D, steps 1, 2, 3 and the last; the goal in grey, constraints marked.", &strip, json!({"steps": errors}))?;
-    say("yngve-fig3");
+    let strip = strip.ok_or_else(|| bad("the 2D conversion ran no iteration"))?;
+    let errors: Vec<Value> = steps.iter().map(|(m, max, rms)| json!({"max": max, "rms": rms, "constraints": m.constraints.len()})).collect();
+    g.add("yngve-fig3", "Yngve & Turk, Fig. 3: iterative refinement in 2D, steps 1, 2, 3 and the last; the goal in grey, constraints marked.", &strip, json!({"steps": errors}))
+}
 
-    bar.finish_and_clear();
+/// `gallery.json` (what each figure measured) and `index.html` (the figures with captions).
+fn write_index(g: &mut Gallery) -> Result<(), Failure> {
     let summary = json!({"figures": g.entries});
     write_atomically(
-        &args.output.join("gallery.json"),
+        &g.dir.join("gallery.json"),
         serde_json::to_string_pretty(&summary)
             .unwrap_or_default()
             .as_bytes(),
@@ -409,14 +453,5 @@ pub(crate) fn run(args: &GalleryArgs, quiet: bool) -> Result<(), Failure> {
             e["caption"].as_str().unwrap_or("")
         );
     }
-    write_atomically(&args.output.join("index.html"), html.as_bytes())?;
-    if !quiet {
-        eprintln!(
-            "wrote {} figures to {} in {:.1} s",
-            g.entries.len(),
-            args.output.display(),
-            start.elapsed().as_secs_f64()
-        );
-    }
-    Ok(())
+    write_atomically(&g.dir.join("index.html"), html.as_bytes())
 }

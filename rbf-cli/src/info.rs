@@ -6,7 +6,7 @@ use clap::Args;
 use rbf_core::{AnyModel, ConstraintKind, Model};
 
 use crate::failure::Failure;
-use crate::io::read_model;
+use crate::common::read_model;
 
 #[derive(Args, Debug)]
 pub(crate) struct InfoArgs {

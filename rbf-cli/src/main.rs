@@ -7,6 +7,7 @@
 
 mod blend;
 mod check;
+mod common;
 mod compare;
 mod completions;
 mod convert;
@@ -18,10 +19,8 @@ mod fit;
 mod floaters;
 mod gallery;
 mod info;
-mod io;
 mod mesh;
 mod plot;
-mod refine2d;
 mod render;
 mod sculpt;
 mod voxelize;

@@ -9,9 +9,8 @@ use rbf_mesh::{
     write_mesh,
 };
 
-use crate::check::mesh_failure;
 use crate::failure::{BAD_INPUT, Failure};
-use crate::io::read_model_3d;
+use crate::common::read_model_3d;
 
 pub(crate) const HELP: &str = "\
 Both methods split the cube lattice into tetrahedra (no ambiguous cases), so a closed surface
@@ -65,14 +64,14 @@ pub(crate) fn run(args: &MeshArgs, quiet: bool) -> Result<(), Failure> {
     };
     let f = model.interpolant.view();
     let start = Instant::now();
-    let spinner = crate::fit::spinner(quiet, "polygonizing".into());
+    let spinner = crate::common::spinner(quiet, "polygonizing".into());
     let result = match args.method {
         Method::Continuation => polygonize_continuation(&f, &surface_seeds(&model), &settings),
         Method::Grid => polygonize_grid(&f, &settings),
     };
     spinner.finish_and_clear();
     let (mesh, stats) = result.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
-    write_mesh(&args.output, &mesh).map_err(|e| mesh_failure(&e))?;
+    write_mesh(&args.output, &mesh).map_err(|e| Failure::mesh(&e))?;
     if !quiet {
         let r = mesh.check();
         eprintln!(

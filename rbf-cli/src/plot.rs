@@ -7,7 +7,7 @@ use rbf_core::AnyModel;
 use rbf_render::{PlotSettings, plot_curve};
 
 use crate::failure::{BAD_INPUT, Failure, USAGE};
-use crate::io::{read_text, write_atomically};
+use crate::common::{read_text, write_atomically};
 
 pub(crate) const HELP: &str = "\
 Draws the curve f = 0 and marks the constraints as in the paper's figures: boundary

@@ -4,14 +4,13 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
-use rbf_core::{AnyModel, Model};
+use rbf_core::Model;
 use rbf_render::{
     Camera, Csg, Lipschitz, MeshStyle, Object, RenderSettings, render, render_mesh, surface_bounds,
 };
 
-use crate::check::mesh_failure;
 use crate::failure::{BAD_INPUT, Failure, USAGE};
-use crate::io::{read_text, write_atomically};
+use crate::common::{read_mesh, read_model_3d, write_atomically};
 
 pub(crate) const HELP: &str = "\
 Models are sphere traced: every step is bounded by a Lipschitz constant proved per cell from
@@ -155,7 +154,7 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
             ));
         }
         let path = &args.inputs[0];
-        let mesh = rbf_mesh::read_mesh(path).map_err(|e| mesh_failure(&e))?;
+        let mesh = read_mesh(path)?;
         let (lo, hi) = mesh.bounding_box();
         let camera = camera(args, lo, hi);
         let style = if args.smooth {
@@ -164,8 +163,7 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
             MeshStyle::Flat
         };
         render_mesh(
-            mesh.positions(),
-            mesh.triangles(),
+            &mesh,
             &camera,
             style,
             [0.80, 0.36, 0.18],
@@ -176,7 +174,7 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
         let models: Vec<Model<3>> = args
             .inputs
             .iter()
-            .map(|p| read_model(p))
+            .map(|p| read_model_3d(p, "render"))
             .collect::<Result<_, _>>()?;
         let views: Vec<_> = models.iter().map(|m| m.interpolant.view()).collect();
         let all: Vec<Csg> = (0..models.len()).map(Csg::Model).collect();
@@ -204,7 +202,7 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
         let bad = |e: rbf_render::RenderError| Failure::new(BAD_INPUT, e.to_string());
         let (lo, hi) = surface_bounds(&views, &objects, &settings).map_err(bad)?;
         let camera = camera(args, lo, hi);
-        let spinner = crate::fit::spinner(
+        let spinner = crate::common::spinner(
             quiet,
             format!("tracing {} × {} pixels", args.width, args.height),
         );
@@ -269,14 +267,29 @@ fn camera(args: &RenderArgs, lo: [f64; 3], hi: [f64; 3]) -> Camera {
     camera
 }
 
-/// A 3D model file.
-pub(crate) fn read_model(path: &Path) -> Result<Model<3>, Failure> {
-    let source = path.display().to_string();
-    match AnyModel::from_json(&read_text(path)?).map_err(|e| Failure::file(&source, &e))? {
-        AnyModel::Three(m) => Ok(m),
-        AnyModel::Two(_) => Err(Failure::new(
-            USAGE,
-            format!("{source} is a 2D model: draw it with `rbf plot`"),
-        )),
-    }
+
+/// A mesh (left, rasterized) and a model (right, traced) from one camera, with shadows.
+pub(crate) fn mesh_and_model(
+    mesh: &rbf_mesh::TriMesh,
+    model: &Model<3>,
+    camera: &rbf_render::Camera,
+    style: rbf_render::MeshStyle,
+) -> Result<rbf_render::Image, Failure> {
+    let look = rbf_render::RenderSettings {
+        shadows: true,
+        ..Default::default()
+    };
+    let bad = |e: rbf_render::RenderError| Failure::new(BAD_INPUT, e.to_string());
+    let left = rbf_render::render_mesh(
+        mesh,
+        camera,
+        style,
+        [0.80, 0.36, 0.18],
+        &look,
+    )
+    .map_err(bad)?;
+    let views = [model.interpolant.view()];
+    let objects = [rbf_render::Object::new(rbf_render::Csg::Model(0), 0)];
+    let (right, _) = rbf_render::render(&views, &objects, camera, &look).map_err(bad)?;
+    rbf_render::Image::side_by_side(&left, &right).map_err(bad)
 }

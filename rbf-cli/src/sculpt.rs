@@ -5,10 +5,10 @@ use std::time::Instant;
 
 use clap::Args;
 use rbf_render::{Camera, Csg, Object, RenderSettings, render};
-use rbf_sculpt::{COMMANDS, Session, parse_command, parse_script};
+use rbf_sculpt::{COMMANDS, Session, parse_command, parse_commands, parse_script};
 
 use crate::failure::{BAD_INPUT, Failure, NUMERICAL};
-use crate::io::{read_text, write_atomically};
+use crate::common::{read_text, write_atomically};
 
 pub(crate) const HELP: &str = "\
 Edits start from the paper's blob (through the corners of a tetrahedron, eight exterior
@@ -84,20 +84,7 @@ pub(crate) fn run(args: &SculptArgs, quiet: bool) -> Result<(), Failure> {
     let edits = if text.trim_start().starts_with('[') {
         parse_script(&text).map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?
     } else {
-        let mut edits = Vec::new();
-        for (n, line) in text.lines().enumerate() {
-            match parse_command(line) {
-                Ok(Some(edit)) => edits.push(edit),
-                Ok(None) => {}
-                Err(e) => {
-                    return Err(Failure::new(
-                        BAD_INPUT,
-                        format!("{source}: line {}: {e}", n + 1),
-                    ));
-                }
-            }
-        }
-        edits
+        parse_commands(&text).map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?
     };
     let start = Instant::now();
     let mut solve_seconds = 0.0;
@@ -186,7 +173,7 @@ fn prompt(session: &mut Session, args: &SculptArgs, quiet: bool) -> Result<(), F
             Ok(None) => continue,
             Err(e) => {
                 refused += 1;
-                println!("refused: {e}");
+                println!("refused: {}", e.problem);
                 continue;
             }
         };

@@ -4,11 +4,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use rbf_mesh::{VoxelMethod, VoxelSettings, read_mesh, signed_distance, voxelize};
+use rbf_mesh::{VoxelMethod, VoxelSettings, signed_distance, voxelize};
 
-use crate::check::mesh_failure;
 use crate::failure::{BAD_INPUT, Failure};
-use crate::io::write_atomically;
+use crate::common::{read_mesh, write_atomically};
 
 pub(crate) const HELP: &str = "\
 Writes OUT.npy, a float32 array indexed [x][y][z] (numpy.load reads it), and beside it OUT.json
@@ -53,7 +52,7 @@ enum MethodArg {
 }
 
 pub(crate) fn run(args: &VoxelizeArgs, quiet: bool) -> Result<(), Failure> {
-    let mesh = read_mesh(&args.mesh).map_err(|e| mesh_failure(&e))?;
+    let mesh = read_mesh(&args.mesh)?;
     let settings = VoxelSettings {
         resolution: args.resolution,
         supersampling: args.supersampling,
@@ -66,7 +65,7 @@ pub(crate) fn run(args: &VoxelizeArgs, quiet: bool) -> Result<(), Failure> {
         ..Default::default()
     };
     let start = Instant::now();
-    let spinner = crate::fit::spinner(quiet, "voxelizing".into());
+    let spinner = crate::common::spinner(quiet, "voxelizing".into());
     let result = voxelize(&mesh, &settings);
     let volume = match result {
         Ok(v) if args.signed_distance => Ok(signed_distance(&v)),

@@ -1271,7 +1271,7 @@ fn sculpt_takes_commands_at_a_prompt_and_from_text_files() {
     );
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("bad.txt: line 2: unknown command `smooth`"),
+        stderr(&o).contains("bad.txt: line 2, column 1: unknown command `smooth`"),
         "{}",
         stderr(&o)
     );

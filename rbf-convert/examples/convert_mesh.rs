@@ -25,7 +25,7 @@ fn main() {
         resolution,
         ..Default::default()
     };
-    let result = convert_iterative(&mesh, &settings, |it| {
+    let result = convert_iterative(&mesh, &settings, |it, _| {
         println!(
             "iteration {:2}: {} boundary / {} interior / {} exterior constraints, max error {:.2} voxels, RMS {:.2}",
             it.iteration, it.boundary, it.interior, it.exterior, it.max_error, it.rms_error

@@ -42,18 +42,15 @@ pub fn blend<const D: usize>(
     models: &[&Model<D>],
 ) -> Result<(Model<D>, BlendReport), ConvertError> {
     let Some(first) = models.first() else {
-        return Err(ConvertError::Incompatible(
-            "nothing to blend: give at least one model".into(),
-        ));
+        return Err(ConvertError::NothingToBlend);
     };
     let kernel = first.interpolant.kernel();
     if let Some(i) = models.iter().position(|m| m.interpolant.kernel() != kernel) {
-        return Err(ConvertError::Incompatible(format!(
-            "model {} has kernel {}, model 1 has {}: blend models of one kernel",
-            i + 1,
-            models[i].interpolant.kernel().name(),
-            kernel.name()
-        )));
+        return Err(ConvertError::KernelMismatch {
+            model: i + 1,
+            expected: kernel,
+            found: models[i].interpolant.kernel(),
+        });
     }
     let mut constraints: Vec<Constraint<D>> = Vec::new();
     let mut report = BlendReport {

@@ -100,9 +100,7 @@ pub fn surface_distance(
 ) -> Result<SurfaceDistance, ConvertError> {
     let mesh_points = sample_surface(mesh, settings.samples, settings.seed);
     if mesh_points.is_empty() {
-        return Err(ConvertError::Mesh(
-            "the mesh has no area to measure from".into(),
-        ));
+        return Err(ConvertError::NoArea);
     }
     let (lo, hi) = mesh.bounding_box();
     let longest = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
@@ -112,12 +110,10 @@ pub fn surface_distance(
         ..Default::default()
     };
     let (surface, _) =
-        polygonize_grid(f, &polygonize).map_err(|e| ConvertError::Mesh(e.to_string()))?;
+        polygonize_grid(f, &polygonize)?;
     let surface_points = sample_surface(&surface, settings.samples, settings.seed);
     if surface_points.is_empty() {
-        return Err(ConvertError::Mesh(
-            "the model has no surface (f does not change sign near its constraints)".into(),
-        ));
+        return Err(ConvertError::NoSurface);
     }
     let to = |tree: &WindingTree, points: &[[f64; 3]]| -> Vec<f64> {
         points

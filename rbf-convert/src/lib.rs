@@ -29,6 +29,8 @@
 
 mod blend;
 mod compare;
+mod error;
+mod goal;
 mod iterative;
 mod nearest;
 mod normals;
@@ -36,6 +38,9 @@ mod poisson;
 
 pub use blend::{BlendReport, blend};
 pub use compare::{CompareSettings, DistanceStats, SurfaceDistance, surface_distance};
-pub use iterative::{IterationReport, IterativeReport, IterativeSettings, convert_iterative};
-pub use normals::{ConvertError, NormalReport, NormalSettings, convert_normals, vertex_normals};
+pub use error::ConvertError;
+pub use iterative::{
+    IterationReport, IterativeReport, IterativeSettings, convert_iterative, convert_iterative_2d,
+};
+pub use normals::{NormalReport, NormalSettings, convert_normals};
 pub use poisson::poisson_subset;

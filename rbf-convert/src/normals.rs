@@ -1,9 +1,9 @@
 //! Conversion by normal constraints (Turk & O'Brien 2002, §4.3).
 
-use rbf_core::{Constraint, FitError, FitSettings, Model, NormalOffset};
+use rbf_core::{Constraint, FitSettings, Model, NormalOffset};
 use rbf_mesh::TriMesh;
 
-use crate::poisson_subset;
+use crate::{ConvertError, poisson_subset};
 
 /// Settings of the normal-constraint conversion.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,49 +52,13 @@ pub struct NormalReport {
     pub fit: rbf_core::FitReport,
 }
 
-/// Why a mesh could not be converted (by either method) or models blended.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum ConvertError {
-    /// No vertex has a usable normal.
-    #[error("no vertex of the mesh has a usable normal (all faces degenerate?)")]
-    NoNormals,
-    /// The fit of the chosen constraints failed; the error names the constraint or the cause.
-    #[error(transparent)]
-    Fit(#[from] FitError),
-    /// The mesh could not be voxelized, or gave an empty volume.
-    #[error("{0}")]
-    Mesh(String),
-    /// Models that cannot be blended together.
-    #[error("{0}")]
-    Incompatible(String),
-}
-
-/// Area-weighted vertex normals from the faces (the mesh's own normals if it has them);
-/// zero for a vertex used by no face or whose faces cancel.
-pub fn vertex_normals(mesh: &TriMesh) -> Vec<[f64; 3]> {
-    if let Some(n) = mesh.normals() {
-        return n.to_vec();
-    }
-    let mut normals = vec![[0.0; 3]; mesh.positions().len()];
-    for (t, tri) in mesh.triangles().iter().enumerate() {
-        let a = mesh.area_vector(t);
-        for &v in tri {
-            for d in 0..3 {
-                normals[v as usize][d] += a[d];
-            }
-        }
-    }
-    normals
-}
-
 /// Converts a mesh to an interpolating implicit surface through its vertices, with normal
 /// constraints against the vertex normals, fitted with rbf-solve.
 pub fn convert_normals(
     mesh: &TriMesh,
     settings: &NormalSettings,
 ) -> Result<(Model<3>, NormalReport), ConvertError> {
-    let normals = vertex_normals(mesh);
+    let normals = mesh.vertex_normals();
     let mut used = vec![false; mesh.positions().len()];
     for t in mesh.triangles() {
         for &v in t {

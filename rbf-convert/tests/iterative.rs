@@ -17,7 +17,7 @@ fn shipped_meshes_convert_within_two_voxels_with_their_genus() {
             resolution: 64,
             ..Default::default()
         };
-        let (model, report) = convert_iterative(&mesh, &s, |_| {}).unwrap();
+        let (model, report) = convert_iterative(&mesh, &s, |_, _| {}).unwrap();
         let best = report.iterations[report.best - 1];
         assert!(best.max_error <= 2.0, "{name}: {best:?}");
         assert!(best.rms_error <= 0.4, "{name}: {best:?}");
@@ -115,7 +115,7 @@ fn meshes_with_holes_convert_through_winding_numbers() {
         resolution: 40,
         ..Default::default()
     };
-    let (model, report) = convert_iterative(&holed, &s, |_| {}).unwrap();
+    let (model, report) = convert_iterative(&holed, &s, |_, _| {}).unwrap();
     assert!(!report.watertight);
     let best = report.iterations[report.best - 1];
     assert!(best.max_error <= 2.0, "{best:?}");
@@ -140,7 +140,7 @@ fn flat_meshes_and_hopeless_resolutions_are_clear_errors() {
             resolution: 16,
             ..Default::default()
         },
-        |_| {},
+        |_, _| {},
     )
     .unwrap_err();
     assert!(e.to_string().contains("no voxel is inside"), "{e}");
@@ -151,7 +151,7 @@ fn flat_meshes_and_hopeless_resolutions_are_clear_errors() {
             resolution: 1,
             ..Default::default()
         },
-        |_| {},
+        |_, _| {},
     )
     .unwrap_err();
     assert!(e.to_string().contains("too coarse"), "{e}");

@@ -7,8 +7,7 @@ use alloc::vec::Vec;
 use nalgebra::{DMatrix, DVector};
 
 use crate::{
-    Constraint, Fit, FitError, FitReport, FitSettings, Interpolant, SolveMethod, System,
-    estimate_inverse_norm1,
+    Constraint, Fit, FitError, FitSettings, Solution, SolveMethod, System, estimate_inverse_norm1,
 };
 
 /// Fits an interpolant to constraints with the small dense solver.
@@ -85,75 +84,16 @@ pub fn solve_dense<const D: usize>(
                 None => false,
             }
         });
-    finish(
-        system,
+    system.accept(
         settings,
-        &x.as_slice()[..k],
-        &x.as_slice()[k..],
-        SolveMethod::Lu,
-        condition,
-        refinements,
-    )
-}
-
-/// Maps a normalized solution back, measures its residual and accepts or rejects it.
-pub fn finish<const D: usize>(
-    system: &System<D>,
-    settings: &FitSettings,
-    weights: &[f64],
-    polynomial: &[f64],
-    method: SolveMethod,
-    condition: f64,
-    refinements: usize,
-) -> Result<Fit<D>, FitError> {
-    finish_with(
-        system,
-        settings,
-        (weights, polynomial),
-        (method, condition, refinements),
-        |f, points, out| {
-            if f.values(points, out).is_err() {
-                out.fill(f64::NAN);
-            }
-        },
-    )
-}
-
-/// [`finish`] with the caller's batch evaluation `evaluate(f, points, out)` (rbf-solve passes
-/// a parallel one).
-pub fn finish_with<const D: usize>(
-    system: &System<D>,
-    settings: &FitSettings,
-    (weights, polynomial): (&[f64], &[f64]),
-    (method, condition, refinements): (SolveMethod, f64, usize),
-    evaluate: impl FnOnce(&Interpolant<f64, D>, &[[f64; D]], &mut [f64]),
-) -> Result<Fit<D>, FitError> {
-    if !weights.iter().chain(polynomial).all(|v| v.is_finite()) {
-        return Err(FitError::Singular {
-            condition: f64::INFINITY,
-        });
-    }
-    let interpolant = system.to_interpolant(weights, polynomial);
-    let mut fx = alloc::vec![0.0; system.rows()];
-    evaluate(&interpolant, system.points(), &mut fx);
-    let residual = system.residual_from_values(&interpolant, &fx);
-    if !(residual <= settings.max_residual) {
-        return Err(FitError::IllConditioned {
-            residual,
-            limit: settings.max_residual,
-            condition,
-        });
-    }
-    Ok(Fit {
-        interpolant,
-        report: FitReport {
-            rows: system.rows(),
-            method,
-            residual,
+        &Solution {
+            weights: &x.as_slice()[..k],
+            polynomial: &x.as_slice()[k..],
+            method: SolveMethod::Lu,
             condition,
             refinements,
         },
-    })
+    )
 }
 
 /// The whole normalized system [Φ + Λ, P; Pᵀ, 0], column-major.

@@ -1,6 +1,6 @@
 //! What a fit returns: the interpolant and an honest account of how it was obtained.
 
-use crate::Interpolant;
+use crate::{FitError, FitSettings, Interpolant, System};
 
 /// How the linear system was factored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,4 +40,82 @@ pub struct Fit<const D: usize> {
     pub interpolant: Interpolant<f64, D>,
     /// Rows, factorization, residual, condition estimate and refinement steps of the fit.
     pub report: FitReport,
+}
+
+/// A solution of a [`System`]'s normalized equations and how it was found: what a solver hands
+/// to [`System::accept`].
+#[derive(Clone, Copy, Debug)]
+pub struct Solution<'a> {
+    /// Kernel weights, one per row, for the normalized coordinates.
+    pub weights: &'a [f64],
+    /// The affine part's D + 1 coefficients (constant first), for the normalized coordinates.
+    pub polynomial: &'a [f64],
+    /// The factorization that produced them.
+    pub method: SolveMethod,
+    /// The solver's estimate of the 1-norm condition number.
+    pub condition: f64,
+    /// Rounds of iterative refinement applied.
+    pub refinements: usize,
+}
+
+impl<const D: usize> System<D> {
+    /// Maps a normalized solution back to an interpolant in the caller's coordinates, measures
+    /// its residual at every row (on every core with the `rayon` feature) and accepts it only
+    /// if the residual is within `settings.max_residual`: a fit is an honest one or an error.
+    ///
+    /// ```
+    /// use rbf_core::{FitSettings, Solution, SolveMethod, System, shapes};
+    /// let settings = FitSettings::default();
+    /// let system = System::new(&shapes::tetrahedron_blob(), &settings).unwrap();
+    /// // Zero weights do not meet the interior constraint: refused.
+    /// let zeros = Solution {
+    ///     weights: &[0.0; 5],
+    ///     polynomial: &[0.0; 4],
+    ///     method: SolveMethod::Lu,
+    ///     condition: 1.0,
+    ///     refinements: 0,
+    /// };
+    /// assert!(system.accept(&settings, &zeros).is_err());
+    /// ```
+    pub fn accept(&self, settings: &FitSettings, solution: &Solution<'_>) -> Result<Fit<D>, FitError> {
+        let Solution {
+            weights,
+            polynomial,
+            method,
+            condition,
+            refinements,
+        } = *solution;
+        if !weights.iter().chain(polynomial).all(|v| v.is_finite()) {
+            return Err(FitError::Singular {
+                condition: f64::INFINITY,
+            });
+        }
+        let interpolant = self.to_interpolant(weights, polynomial);
+        let mut fx = alloc::vec![0.0; self.rows()];
+        #[cfg(feature = "rayon")]
+        let evaluated = interpolant.view().par_values(self.points(), &mut fx);
+        #[cfg(not(feature = "rayon"))]
+        let evaluated = interpolant.view().values(self.points(), &mut fx);
+        if evaluated.is_err() {
+            fx.fill(f64::NAN);
+        }
+        let residual = self.residual_from_values(&interpolant, &fx);
+        if !(residual <= settings.max_residual) {
+            return Err(FitError::IllConditioned {
+                residual,
+                limit: settings.max_residual,
+                condition,
+            });
+        }
+        Ok(Fit {
+            interpolant,
+            report: FitReport {
+                rows: self.rows(),
+                method,
+                residual,
+                condition,
+                refinements,
+            },
+        })
+    }
 }

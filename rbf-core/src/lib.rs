@@ -59,6 +59,9 @@ mod math;
 mod real;
 mod view;
 
+#[doc(hidden)]
+pub mod vec3;
+
 #[cfg(feature = "rayon")]
 mod parallel;
 
@@ -96,9 +99,9 @@ mod text;
 pub use {
     condition::estimate_inverse_norm1,
     constraint::{Constraint, ConstraintKind, NormalOffset, RowSource},
-    dense::{finish, finish_with, fit, solve_dense},
+    dense::{fit, solve_dense},
     error::FitError,
-    fit::{Fit, FitReport, SolveMethod},
+    fit::{Fit, FitReport, Solution, SolveMethod},
     interpolant::Interpolant,
     knot::{KnotError, insert_knot, project_to_surface},
     model::Model,

@@ -174,3 +174,27 @@ fn prism(centre: [f64; 3], size: f64, tilt: [f64; 2], depth: usize, out: &mut Ve
         prism(child, 0.5 * size, [0.6 * c, 0.6 * s], depth - 1, out);
     }
 }
+
+/// A teapot in silhouette, the 2D goal of Yngve & Turk (2002), Figure 3: body, lid knob, spout
+/// and a ring handle (whose hole makes a second curve). Fits the box [−1.7, 1.9] × [−1.2, 1.2].
+///
+/// ```
+/// use rbf_core::shapes::teapot_silhouette;
+/// assert!(teapot_silhouette([0.0, 0.0])); // the body
+/// assert!(!teapot_silhouette([-1.05, 0.05])); // the handle's hole
+/// assert!(teapot_silhouette([-1.4, 0.05])); // the handle
+/// ```
+pub fn teapot_silhouette(p: [f64; 2]) -> bool {
+    let [x, y] = p;
+    let length = |a: f64, b: f64| sqrt(a * a + b * b);
+    let body = x * x + (y / 0.7) * (y / 0.7) < 1.0;
+    let knob = length(x, y - 0.78) < 0.15;
+    // The spout: a band narrowing from 0.28 to 0.16 along (0.8, −0.1) → (1.55, 0.55).
+    let (ax, ay, bx, by) = (0.8, -0.1, 1.55, 0.55);
+    let along = ((x - ax) * (bx - ax) + (y - ay) * (by - ay)) / ((bx - ax) * (bx - ax) + (by - ay) * (by - ay));
+    let t = along.clamp(0.0, 1.0);
+    let spout = length(x - ax - t * (bx - ax), y - ay - t * (by - ay)) < 0.08 + 0.06 * (1.0 - t);
+    let r = length(x + 1.05, y - 0.05);
+    let handle = (0.28..0.42).contains(&r) && x < -0.85;
+    body || knob || spout || handle
+}

@@ -3,7 +3,7 @@
 use crate::hash::FastMap;
 
 use crate::TriMesh;
-use crate::mesh::norm;
+use rbf_core::vec3::norm;
 
 /// The checks of a mesh. A mesh is watertight when it has no boundary or non-manifold edges
 /// and a consistent orientation.

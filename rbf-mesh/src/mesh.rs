@@ -1,5 +1,7 @@
 //! The triangle mesh.
 
+use rbf_core::vec3::{cross, dot, sub};
+
 use crate::MeshError;
 
 /// A triangle mesh: positions, triangles (counter-clockwise seen from outside), and optional
@@ -112,6 +114,32 @@ impl TriMesh {
         cross(sub(b, a), sub(c, a))
     }
 
+    /// One normal per vertex: the mesh's own normals when it has them, otherwise the sum of
+    /// the area vectors of the triangles around the vertex (area-weighted, not normalized);
+    /// zero for a vertex that no triangle uses or whose triangles cancel.
+    ///
+    /// ```
+    /// let ico = rbf_mesh::TriMesh::icosphere(0);
+    /// let n = ico.vertex_normals();
+    /// let p = ico.positions()[0];
+    /// let cos = (0..3).map(|d| n[0][d] * p[d]).sum::<f64>()
+    ///     / (n[0].iter().map(|x| x * x).sum::<f64>() * p.iter().map(|x| x * x).sum::<f64>()).sqrt();
+    /// assert!(cos > 0.999); // outward, along the radius
+    /// ```
+    pub fn vertex_normals(&self) -> Vec<[f64; 3]> {
+        if let Some(n) = &self.normals {
+            return n.clone();
+        }
+        let mut normals = vec![[0.0; 3]; self.positions.len()];
+        for t in 0..self.triangles.len() {
+            let a = self.area_vector(t);
+            for &v in &self.triangles[t] {
+                normals[v as usize] = rbf_core::vec3::add(normals[v as usize], a);
+            }
+        }
+        normals
+    }
+
     /// The enclosed volume (signed: positive when triangles face outward).
     pub fn volume(&self) -> f64 {
         (0..self.triangles.len())
@@ -136,19 +164,3 @@ impl TriMesh {
     }
 }
 
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-pub(crate) fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}

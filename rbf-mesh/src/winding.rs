@@ -7,7 +7,7 @@
 use rayon::prelude::*;
 
 use crate::TriMesh;
-use crate::mesh::{cross, dot, norm, sub};
+use rbf_core::vec3::{cross, dot, norm, sub};
 
 /// The solid angle of triangle (a, b, c) seen from p (Van Oosterom & Strackee 1983), signed
 /// positive when the triangle faces away from p.

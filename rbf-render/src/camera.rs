@@ -1,6 +1,6 @@
 //! A pinhole camera: rays through pixels, and points back to pixels.
 
-use crate::vector::{Vec3, add, cross, dot, norm, normalize, scale, sub};
+use rbf_core::vec3::{Vec3, add, cross, dot, norm, normalize, scale, sub};
 
 /// A ray: origin and unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,7 +1,8 @@
 //! What can go wrong when rendering.
 
-/// A render that cannot be made.
-#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+/// A render that cannot be made: each variant names the setting or the part at fault.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum RenderError {
     /// Image sides must be 1 to [`crate::MAX_SIDE`] pixels.
     #[error("an image of {width} × {height} pixels: each side must be 1 to 16384")]
@@ -25,14 +26,21 @@ pub enum RenderError {
     /// A union or intersection of nothing.
     #[error("a union or intersection needs at least one part")]
     EmptyCsg,
-    /// A setting out of range (samples per axis, plot bounds), or nothing to show; the message
-    /// says which.
-    #[error("{0}")]
-    Setting(String),
-    /// A mesh that cannot be drawn (no triangles, an index out of range, a non-finite vertex).
-    #[error("mesh: {0}")]
-    Mesh(String),
-    /// The PNG encoder failed; its message.
+    /// Anti-aliasing takes 1 to 16 rays per pixel along each axis.
+    #[error("samples must be 1 to 16 per axis, not {0}")]
+    Samples(u32),
+    /// A plot's box has no area or is not finite.
+    #[error("the plot's bounds {lo:?} – {hi:?} are empty or not finite")]
+    PlotBounds {
+        /// The lower corner asked for.
+        lo: [f64; 2],
+        /// The upper corner asked for.
+        hi: [f64; 2],
+    },
+    /// No object's surface crosses its box: there is nothing to aim a camera at.
+    #[error("no object has a surface to show")]
+    NoSurface,
+    /// The PNG encoder failed.
     #[error("PNG encoding failed: {0}")]
-    Png(String),
+    Png(#[from] png::EncodingError),
 }

@@ -107,6 +107,39 @@ impl Image {
         Ok(out)
     }
 
+    /// Darkens by `factor` (0 black, 1 unchanged) every pixel whose centre, mapped onto the box
+    /// `[lo, hi]` of a plane (x to the right, y up, as [`crate::plot_curve`] draws), satisfies
+    /// `inside`: a region drawn under a plot.
+    ///
+    /// ```
+    /// use rbf_render::Image;
+    /// let mut image = Image::new(4, 2, [1.0; 3]).unwrap();
+    /// image.darken_region(([0.0, 0.0], [4.0, 2.0]), 0.5, |p| p[0] < 2.0 && p[1] > 1.0);
+    /// assert_eq!(image.get(0, 0), [0.5; 3]); // top left: x < 2, y > 1
+    /// assert_eq!(image.get(0, 1), [1.0; 3]);
+    /// assert_eq!(image.get(3, 0), [1.0; 3]);
+    /// ```
+    pub fn darken_region(
+        &mut self,
+        (lo, hi): ([f64; 2], [f64; 2]),
+        factor: f32,
+        inside: impl Fn([f64; 2]) -> bool,
+    ) {
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        for y in 0..self.height {
+            for x in 0..self.width {
+                let p = [
+                    lo[0] + (f64::from(x) + 0.5) / w * (hi[0] - lo[0]),
+                    hi[1] - (f64::from(y) + 0.5) / h * (hi[1] - lo[1]),
+                ];
+                if inside(p) {
+                    let c = self.get(x, y);
+                    self.set(x, y, c.map(|v| v * factor));
+                }
+            }
+        }
+    }
+
     /// 8-bit sRGB bytes, row by row.
     pub fn to_srgb8(&self) -> Vec<u8> {
         self.pixels
@@ -124,13 +157,13 @@ impl Image {
         encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
         let mut writer = encoder
             .write_header()
-            .map_err(|e| RenderError::Png(e.to_string()))?;
+            ?;
         writer
             .write_image_data(&self.to_srgb8())
-            .map_err(|e| RenderError::Png(e.to_string()))?;
+            ?;
         writer
             .finish()
-            .map_err(|e| RenderError::Png(e.to_string()))?;
+            ?;
         Ok(bytes)
     }
 }

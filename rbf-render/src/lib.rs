@@ -43,7 +43,6 @@ mod plot;
 mod scene;
 mod shade;
 mod tracer;
-mod vector;
 
 pub use camera::{Camera, Ray};
 pub use csg::Csg;
@@ -51,5 +50,6 @@ pub use error::RenderError;
 pub use image::{Image, MAX_SIDE};
 pub use mesh::{MeshStyle, render_mesh};
 pub use plot::{PlotSettings, plot_curve};
-pub use scene::{Light, Object, RenderSettings, RenderStats, first_hits, render, surface_bounds};
+pub use scene::{Object, RenderStats, first_hits, render, surface_bounds};
+pub use shade::{Light, RenderSettings};
 pub use tracer::{Lipschitz, TraceCounts};

@@ -2,13 +2,14 @@
 //! implicit conversion can be put side by side.
 
 use rayon::prelude::*;
+use rbf_mesh::TriMesh;
 
 use crate::RenderError;
 use crate::camera::Camera;
 use crate::image::{Image, check_size};
-use crate::scene::{RenderSettings, default_lights};
+use crate::shade::{RenderSettings, default_lights};
 use crate::shade::{checker, phong, sky};
-use crate::vector::{Vec3, add, cross, dot, normalize, scale, sub};
+use rbf_core::vec3::{add, cross, dot, normalize, scale, sub};
 
 /// How a mesh's faces are shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,43 +24,27 @@ pub enum MeshStyle {
 /// lights, background, ground and anti-aliasing of `settings` (no shadows).
 ///
 /// ```
+/// use rbf_mesh::TriMesh;
 /// use rbf_render::{Camera, MeshStyle, RenderSettings, render_mesh};
-/// let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-/// let triangles = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+/// let mesh = TriMesh::new(
+///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+///     vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+/// )
+/// .unwrap();
 /// let camera = Camera::orbit([0.0; 3], [1.0; 3], 30.0, 20.0, 64, 64);
-/// let image = render_mesh(&positions, &triangles, &camera, MeshStyle::Flat,
-///     [0.8, 0.4, 0.2], &RenderSettings::default()).unwrap();
+/// let image = render_mesh(&mesh, &camera, MeshStyle::Flat, [0.8, 0.4, 0.2],
+///     &RenderSettings::default()).unwrap();
 /// assert_eq!(image.width(), 64);
 /// ```
 pub fn render_mesh(
-    positions: &[[f64; 3]],
-    triangles: &[[u32; 3]],
+    mesh: &TriMesh,
     camera: &Camera,
     style: MeshStyle,
     colour: [f64; 3],
     settings: &RenderSettings,
 ) -> Result<Image, RenderError> {
     check_size(camera.width, camera.height)?;
-    if triangles.is_empty() {
-        return Err(RenderError::Mesh("the mesh has no triangles".into()));
-    }
-    if let Some((t, tri)) = triangles
-        .iter()
-        .enumerate()
-        .find(|(_, tri)| tri.iter().any(|&v| v as usize >= positions.len()))
-    {
-        return Err(RenderError::Mesh(format!(
-            "triangle {t} names vertex {:?} of {}",
-            tri,
-            positions.len()
-        )));
-    }
-    if let Some(v) = positions
-        .iter()
-        .position(|p| !p.iter().all(|x| x.is_finite()))
-    {
-        return Err(RenderError::Mesh(format!("vertex {v} is not finite")));
-    }
+    let (positions, triangles) = (mesh.positions(), mesh.triangles());
     let s = settings.samples.clamp(1, 16);
     let big = Camera {
         width: camera.width * s,
@@ -135,13 +120,13 @@ pub fn render_mesh(
     }
     let normals = match style {
         MeshStyle::Flat => None,
-        MeshStyle::Smooth => Some(vertex_normals(positions, triangles)),
+        MeshStyle::Smooth => Some(mesh.vertex_normals().into_iter().map(normalize).collect::<Vec<_>>()),
     };
     let lights = settings
         .lights
         .clone()
         .unwrap_or_else(|| default_lights(camera));
-    let (lo_y, size) = mesh_floor(positions);
+    let (lo_y, size) = mesh_floor(mesh);
     let samples: Vec<[f64; 3]> = (0..bw * bh)
         .into_par_iter()
         .map(|at| {
@@ -189,28 +174,9 @@ pub fn render_mesh(
     Ok(Image::from_pixels(camera.width, camera.height, pixels))
 }
 
-/// Area-weighted vertex normals.
-fn vertex_normals(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> Vec<Vec3> {
-    let mut normals = vec![[0.0; 3]; positions.len()];
-    for tri in triangles {
-        let c = tri.map(|v| positions[v as usize]);
-        let n = cross(sub(c[1], c[0]), sub(c[2], c[0]));
-        for &v in tri {
-            normals[v as usize] = add(normals[v as usize], n);
-        }
-    }
-    normals.into_iter().map(normalize).collect()
-}
-
 /// The height of the floor under a mesh and the size of its checker squares.
-fn mesh_floor(positions: &[[f64; 3]]) -> (f64, f64) {
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in positions {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
+fn mesh_floor(mesh: &TriMesh) -> (f64, f64) {
+    let (lo, hi) = mesh.bounding_box();
     let size = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
     (lo[1], size.max(1e-12) / 6.0)
 }
@@ -219,7 +185,7 @@ fn mesh_floor(positions: &[[f64; 3]]) -> (f64, f64) {
 fn background(ray: &crate::Ray, settings: &RenderSettings, floor: f64, square: f64) -> [f64; 3] {
     if settings.ground && ray.direction[1] < 0.0 && ray.origin[1] > floor {
         let t = (floor - ray.origin[1]) / ray.direction[1];
-        let p = crate::vector::along(ray.origin, ray.direction, t);
+        let p = rbf_core::vec3::along(ray.origin, ray.direction, t);
         // The floor lit from above, as in the traced scenes.
         return checker(p, square).map(|grey| grey * (0.15 + 0.85 * 0.8));
     }

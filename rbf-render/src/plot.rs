@@ -71,9 +71,7 @@ pub fn plot_curve(
         .bounds
         .unwrap_or_else(|| default_bounds(f, constraints, w / h));
     if !(0..2).all(|d| hi[d] > lo[d] && lo[d].is_finite() && hi[d].is_finite()) {
-        return Err(RenderError::Setting(format!(
-            "the plot's bounds {lo:?} – {hi:?} are empty or not finite"
-        )));
+        return Err(RenderError::PlotBounds { lo, hi });
     }
     let pixel = ((hi[0] - lo[0]) / w).max((hi[1] - lo[1]) / h);
     let to_world = |x: f64, y: f64| {

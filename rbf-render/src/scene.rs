@@ -10,9 +10,9 @@ use crate::RenderError;
 use crate::camera::{Camera, Ray};
 use crate::csg::Csg;
 use crate::image::{Image, check_size};
-use crate::shade::{checker, phong, sky};
-use crate::tracer::{Lipschitz, TraceCounts, Tracer};
-use crate::vector::{Vec3, add, along, cross, dot, normalize, scale, sub};
+use crate::shade::{Light, RenderSettings, checker, default_lights, phong, sky};
+use crate::tracer::{TraceCounts, Tracer};
+use rbf_core::vec3::{Vec3, along, dot, normalize, scale, sub};
 
 /// One solid in a scene: a CSG expression over the models, with its colour and reflectivity.
 #[derive(Clone, Debug, PartialEq)]
@@ -46,52 +46,6 @@ impl Object {
             shape,
             colour: PALETTE[index % PALETTE.len()],
             reflectivity: 0.0,
-        }
-    }
-}
-
-/// A light infinitely far away.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Light {
-    /// Toward the light (any length).
-    pub direction: [f64; 3],
-    /// Brightness (1 is full).
-    pub intensity: f64,
-}
-
-/// Anti-aliasing, shadows, reflections, floor, lights and ray stepping of a render.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RenderSettings {
-    /// Rays per pixel along each axis (anti-aliasing): 2 traces 4 rays a pixel.
-    pub samples: u32,
-    /// Trace toward each light for hard shadows.
-    pub shadows: bool,
-    /// Depth of mirror reflections (0: none).
-    pub reflections: u32,
-    /// A checkered floor under the scene.
-    pub ground: bool,
-    /// Lights; `None` puts one above and to the left of the camera.
-    pub lights: Option<Vec<Light>>,
-    /// Background at the top and at the horizon (linear RGB).
-    pub background: [[f64; 3]; 2],
-    /// Which bound on |∇f| sizes the ray steps: proved, estimated, or sampled; `Auto` by
-    /// default.
-    pub lipschitz: Lipschitz,
-    /// Cells along the longest side of each solid's box.
-    pub cells: usize,
-}
-
-impl Default for RenderSettings {
-    fn default() -> Self {
-        Self {
-            samples: 2,
-            shadows: true,
-            reflections: 0,
-            ground: true,
-            lights: None,
-            background: [[0.45, 0.60, 0.85], [0.92, 0.94, 0.97]],
-            lipschitz: Lipschitz::Auto,
-            cells: 32,
         }
     }
 }
@@ -157,10 +111,7 @@ pub fn render(
         o.shape.validate(models.len())?;
     }
     if !(1..=16).contains(&settings.samples) {
-        return Err(RenderError::Setting(format!(
-            "samples must be 1 to 16 per axis, not {}",
-            settings.samples
-        )));
+        return Err(RenderError::Samples(settings.samples));
     }
     let start = Instant::now();
     let tracers: Vec<Tracer<'_, '_>> = objects
@@ -289,9 +240,7 @@ pub fn surface_bounds(
         }
     }
     if lo[0] > hi[0] {
-        return Err(RenderError::Setting(
-            "no object has a surface to show".into(),
-        ));
+        return Err(RenderError::NoSurface);
     }
     Ok((lo, hi))
 }
@@ -324,20 +273,6 @@ pub fn first_hits(
     Ok(tracer.trace(rays, &limits, &mut TraceCounts::default()))
 }
 
-/// A key light above and to the left of the camera.
-pub(crate) fn default_lights(camera: &Camera) -> Vec<Light> {
-    let forward = normalize(sub(camera.target, camera.eye));
-    let right = normalize(cross(forward, camera.up));
-    let up = cross(right, forward);
-    let direction = add(
-        add(scale(up, 1.0), scale(right, -0.6)),
-        scale(forward, -0.5),
-    );
-    vec![Light {
-        direction: normalize(direction),
-        intensity: 1.0,
-    }]
-}
 
 impl Renderer<'_, '_> {
     /// The nearest hit of each ray: the solids and the ground.

@@ -1,7 +1,10 @@
-//! The looks shared by traced scenes and rasterized meshes: Phong shading, the sky, the floor.
+//! The look shared by traced scenes and rasterized meshes: lights, samples, shadows, the sky
+//! and the floor ([`RenderSettings`]), and Phong shading.
 
-use crate::scene::Light;
-use crate::vector::{Vec3, dot, normalize, scale, sub};
+use rbf_core::vec3::{Vec3, add, cross, dot, normalize, scale, sub};
+
+use crate::camera::Camera;
+use crate::tracer::Lipschitz;
 
 /// Phong shading of a surface of `colour` with outward normal `n`, seen along `direction`:
 /// ambient, then diffuse and specular from every light that `lit` says reaches the point.
@@ -40,4 +43,65 @@ pub(crate) fn sky(direction: Vec3, background: [[f64; 3]; 2]) -> [f64; 3] {
 pub(crate) fn checker(p: Vec3, square: f64) -> [f64; 3] {
     let parity = ((p[0] / square).floor() + (p[2] / square).floor()) as i64 & 1;
     if parity == 0 { [0.85; 3] } else { [0.65; 3] }
+}
+
+/// A light infinitely far away.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    /// Toward the light (any length).
+    pub direction: [f64; 3],
+    /// Brightness (1 is full).
+    pub intensity: f64,
+}
+
+/// Anti-aliasing, shadows, reflections, floor, lights and ray stepping of a render.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Rays per pixel along each axis (anti-aliasing): 2 traces 4 rays a pixel.
+    pub samples: u32,
+    /// Trace toward each light for hard shadows.
+    pub shadows: bool,
+    /// Depth of mirror reflections (0: none).
+    pub reflections: u32,
+    /// A checkered floor under the scene.
+    pub ground: bool,
+    /// Lights; `None` puts one above and to the left of the camera.
+    pub lights: Option<Vec<Light>>,
+    /// Background at the top and at the horizon (linear RGB).
+    pub background: [[f64; 3]; 2],
+    /// Which bound on |∇f| sizes the ray steps: proved, estimated, or sampled; `Auto` by
+    /// default.
+    pub lipschitz: Lipschitz,
+    /// Cells along the longest side of each solid's box.
+    pub cells: usize,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            samples: 2,
+            shadows: true,
+            reflections: 0,
+            ground: true,
+            lights: None,
+            background: [[0.45, 0.60, 0.85], [0.92, 0.94, 0.97]],
+            lipschitz: Lipschitz::Auto,
+            cells: 32,
+        }
+    }
+}
+
+/// A key light above and to the left of the camera.
+pub(crate) fn default_lights(camera: &Camera) -> Vec<Light> {
+    let forward = normalize(sub(camera.target, camera.eye));
+    let right = normalize(cross(forward, camera.up));
+    let up = cross(right, forward);
+    let direction = add(
+        add(scale(up, 1.0), scale(right, -0.6)),
+        scale(forward, -0.5),
+    );
+    vec![Light {
+        direction: normalize(direction),
+        intensity: 1.0,
+    }]
 }

@@ -10,7 +10,7 @@ use rbf_core::{InterpolantView, Kernel};
 
 use crate::camera::Ray;
 use crate::csg::Csg;
-use crate::vector::{Vec3, along, dot, norm, sub};
+use rbf_core::vec3::{Vec3, along, dot, norm, sub};
 
 /// Which Lipschitz constant steps the rays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -304,7 +304,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
         }
         let (_, m, sign) = self.csg.active(&values);
         let g = self.views[m].gradient(&p);
-        crate::vector::normalize(crate::vector::scale(g, -sign))
+        rbf_core::vec3::normalize(rbf_core::vec3::scale(g, -sign))
     }
 
     /// How far f_m can move from its value at a point within distance s, for the slope data

@@ -192,8 +192,7 @@ fn the_mesh_rasterizer_and_the_tracer_agree_on_a_sphere() {
     );
     let mesh = rbf_mesh::TriMesh::icosphere(5);
     let image = render_mesh(
-        mesh.positions(),
-        mesh.triangles(),
+        &mesh,
         &camera,
         MeshStyle::Smooth,
         [1.0; 3],
@@ -270,27 +269,8 @@ fn bad_requests_are_errors() {
     assert!(render(&models, &[], &camera, &mask_settings()).is_err());
     camera.width = 0;
     assert!(render(&models, &[white(Csg::Model(0))], &camera, &mask_settings()).is_err());
-    let camera = front_camera(8);
-    assert!(
-        render_mesh(
-            &[[0.0; 3]],
-            &[[0, 1, 2]],
-            &camera,
-            MeshStyle::Flat,
-            [1.0; 3],
-            &mask_settings()
-        )
-        .is_err()
-    );
-    assert!(
-        render_mesh(
-            &[[f64::NAN; 3]; 3],
-            &[[0, 1, 2]],
-            &camera,
-            MeshStyle::Flat,
-            [1.0; 3],
-            &mask_settings()
-        )
-        .is_err()
-    );
+    // A mesh with an index out of range or a NaN vertex cannot reach render_mesh: TriMesh
+    // refuses it.
+    assert!(rbf_mesh::TriMesh::new(vec![[0.0; 3]], vec![[0, 1, 2]]).is_err());
+    assert!(rbf_mesh::TriMesh::new(vec![[f64::NAN; 3]; 3], vec![[0, 1, 2]]).is_err());
 }

@@ -1,6 +1,6 @@
 //! One-line edit commands, for typing edits at a prompt: the same edits as scripts, in words.
 
-use crate::Edit;
+use crate::{Edit, ParseError, ParseProblem};
 
 /// The commands [`parse_command`] understands, for a prompt's help.
 pub const COMMANDS: &str = "\
@@ -15,41 +15,53 @@ delete ITEM                   remove an item
 undo | redo";
 
 /// Parses one command line into an edit (see [`COMMANDS`]); `Ok(None)` for a blank line or a
-/// `#` comment.
+/// `#` comment. An error names the column of the word at fault (and line 1).
 ///
 /// ```
 /// use rbf_sculpt::{Edit, parse_command};
 /// assert_eq!(parse_command("add 0 0 1.5").unwrap(), Some(Edit::AddBoundary { position: [0.0, 0.0, 1.5] }));
 /// assert_eq!(parse_command("move 12 1 2 3").unwrap(), Some(Edit::Move { item: 12, to: [1.0, 2.0, 3.0] }));
-/// assert!(parse_command("move twelve 1 2 3").is_err());
+/// assert_eq!(parse_command("move twelve 1 2 3").unwrap_err().column, 6);
 /// ```
-pub fn parse_command(line: &str) -> Result<Option<Edit>, String> {
+pub fn parse_command(line: &str) -> Result<Option<Edit>, ParseError> {
     let line = line.split('#').next().unwrap_or("");
-    let mut words = line.split_whitespace();
-    let Some(verb) = words.next() else {
+    // Each word with its 1-based column in characters.
+    let words: Vec<(usize, &str)> = line
+        .split_whitespace()
+        .map(|w| {
+            let offset = w.as_ptr() as usize - line.as_ptr() as usize;
+            (line[..offset].chars().count() + 1, w)
+        })
+        .collect();
+    let Some(&(verb_column, verb)) = words.first() else {
         return Ok(None);
     };
-    let args: Vec<&str> = words.collect();
-    let number = |i: usize| -> Result<f64, String> {
-        let w = args[i];
+    let args = &words[1..];
+    let at = |column: usize, problem: ParseProblem| ParseError {
+        line: 1,
+        column,
+        problem,
+    };
+    let number = |i: usize| -> Result<f64, ParseError> {
+        let (column, w) = args[i];
         match w.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(format!("`{w}` is not a finite number")),
+            _ => Err(at(column, ParseProblem::NotANumber(w.into()))),
         }
     };
-    let item = |i: usize| -> Result<usize, String> {
-        args[i]
-            .parse::<usize>()
-            .map_err(|_| format!("`{}` is not an item number", args[i]))
+    let item = |i: usize| -> Result<usize, ParseError> {
+        let (column, w) = args[i];
+        w.parse::<usize>()
+            .map_err(|_| at(column, ParseProblem::NotAnItem(w.into())))
     };
-    let point = |from: usize| -> Result<[f64; 3], String> {
+    let point = |from: usize| -> Result<[f64; 3], ParseError> {
         Ok([number(from)?, number(from + 1)?, number(from + 2)?])
     };
-    let arity = |counts: &[usize], usage: &str| -> Result<(), String> {
+    let arity = |counts: &[usize], usage: &str| -> Result<(), ParseError> {
         if counts.contains(&args.len()) {
             Ok(())
         } else {
-            Err(format!("usage: {usage}"))
+            Err(at(verb_column, ParseProblem::Usage(usage.into())))
         }
     };
     let edit = match verb {
@@ -114,12 +126,27 @@ pub fn parse_command(line: &str) -> Result<Option<Edit>, String> {
             Edit::Redo
         }
         other => {
-            return Err(format!(
-                "unknown command `{other}`; the commands:\n{COMMANDS}"
-            ));
+            return Err(at(verb_column, ParseProblem::UnknownCommand(other.into())));
         }
     };
     Ok(Some(edit))
+}
+
+/// Parses a text of commands, one a line (see [`parse_command`]); an error names the line and
+/// column.
+///
+/// ```
+/// let edits = rbf_sculpt::parse_commands("# a bump\nadd 0 0 1.3\n\nundo\n").unwrap();
+/// assert_eq!(edits.len(), 2);
+/// assert_eq!(rbf_sculpt::parse_commands("undo\nsmooth 3").unwrap_err().line, 2);
+/// ```
+pub fn parse_commands(text: &str) -> Result<Vec<Edit>, ParseError> {
+    let mut edits = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let edit = parse_command(line).map_err(|e| ParseError { line: n + 1, ..e })?;
+        edits.extend(edit);
+    }
+    Ok(edits)
 }
 
 #[cfg(test)]
@@ -191,15 +218,17 @@ mod tests {
 
     #[test]
     fn mistakes_say_what_was_expected() {
-        for (line, phrase) in [
-            ("add 1 2", "usage: add X Y Z"),
-            ("add 1 2 nan", "`nan` is not a finite number"),
-            ("move -1 0 0 0", "`-1` is not an item number"),
-            ("undo 3", "usage: undo"),
-            ("smooth 3", "unknown command `smooth`"),
+        for (line, column, phrase) in [
+            ("add 1 2", 1, "usage: add X Y Z"),
+            ("add 1 2 nan", 9, "`nan` is not a finite number"),
+            ("  move -1 0 0 0", 8, "`-1` is not an item number"),
+            ("undo 3", 1, "usage: undo"),
+            ("smooth 3", 1, "unknown command `smooth`"),
+            ("add 1 2 ∞ # the ∞ is one character", 9, "`∞` is not a finite number"),
         ] {
             let e = parse_command(line).unwrap_err();
-            assert!(e.contains(phrase), "{line}: {e}");
+            assert_eq!((e.line, e.column), (1, column), "{line}");
+            assert!(e.problem.to_string().contains(phrase), "{line}: {e}");
         }
     }
 }

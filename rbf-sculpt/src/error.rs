@@ -2,6 +2,7 @@
 
 /// An edit that cannot be made; the session is left as it was.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum SculptError {
     /// No item with this index.
     #[error("there is no item {0}")]
@@ -33,4 +34,44 @@ pub enum SculptError {
     /// Nothing to undo or redo.
     #[error("nothing to {0}")]
     History(&'static str),
+}
+
+/// A command line or script that does not parse, and where: 1-based line and column (in
+/// characters) of the word or JSON token at fault.
+///
+/// ```
+/// let e = rbf_sculpt::parse_commands("add 0 0 1\nmove 4 1 two 3\n").unwrap_err();
+/// assert_eq!((e.line, e.column), (2, 10));
+/// assert_eq!(e.to_string(), "line 2, column 10: `two` is not a finite number");
+/// ```
+#[derive(Debug, thiserror::Error, Clone, PartialEq, Eq)]
+#[error("line {line}, column {column}: {problem}")]
+pub struct ParseError {
+    /// 1-based line of the text (1 for a single command).
+    pub line: usize,
+    /// 1-based column, in characters, where the word at fault starts.
+    pub column: usize,
+    /// What is wrong there.
+    pub problem: ParseProblem,
+}
+
+/// What is wrong with a command or script, without its position.
+#[derive(Debug, thiserror::Error, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ParseProblem {
+    /// A coordinate or value that is not a finite number.
+    #[error("`{0}` is not a finite number")]
+    NotANumber(String),
+    /// An item index that is not a whole number ≥ 0.
+    #[error("`{0}` is not an item number")]
+    NotAnItem(String),
+    /// A known command with the wrong number of arguments; its usage.
+    #[error("usage: {0}")]
+    Usage(String),
+    /// A word that is no command.
+    #[error("unknown command `{0}`; the commands:\n{commands}", commands = crate::COMMANDS)]
+    UnknownCommand(String),
+    /// A script that is not a JSON array of edits; serde_json's account of it.
+    #[error("{0}")]
+    Json(String),
 }

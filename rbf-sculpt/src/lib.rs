@@ -27,9 +27,13 @@ mod incremental;
 mod script;
 mod session;
 
-pub use command::{COMMANDS, parse_command};
-pub use error::SculptError;
+pub use command::{COMMANDS, parse_command, parse_commands};
+pub use error::{ParseError, ParseProblem, SculptError};
 pub use floaters::{FloaterSettings, Floaters};
 pub use incremental::{IncrementalFit, Row};
 pub use script::{Edit, parse_script};
 pub use session::{Item, Session};
+
+/// A script of edits (JSON, see [`parse_script`]) that sculpts a torus from the paper's start:
+/// Turk & O'Brien (2002), Figure 7. The gallery replays it; `scripts/torus.json` is the file.
+pub const TORUS_SCRIPT: &str = include_str!("../scripts/torus.json");

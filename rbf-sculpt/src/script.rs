@@ -2,7 +2,7 @@
 
 use serde::Deserialize;
 
-use crate::{SculptError, Session};
+use crate::{ParseError, ParseProblem, SculptError, Session};
 
 /// One edit of a script, as JSON: `{"add_boundary": {"position": [x, y, z]}}`, `"undo"`, …
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -70,8 +70,17 @@ pub enum Edit {
 /// let edits = rbf_sculpt::parse_script(r#"[{"add_boundary": {"position": [0, 0, 1.5]}}, "undo"]"#).unwrap();
 /// assert_eq!(edits.len(), 2);
 /// ```
-pub fn parse_script(text: &str) -> Result<Vec<Edit>, String> {
-    serde_json::from_str(text).map_err(|e| format!("line {}, column {}: {e}", e.line(), e.column()))
+pub fn parse_script(text: &str) -> Result<Vec<Edit>, ParseError> {
+    serde_json::from_str(text).map_err(|e| {
+        // serde_json's message ends with its own " at line L column C": said once, by ParseError.
+        let message = e.to_string();
+        let position = format!(" at line {} column {}", e.line(), e.column());
+        ParseError {
+            line: e.line(),
+            column: e.column(),
+            problem: ParseProblem::Json(message.trim_end_matches(&position).into()),
+        }
+    })
 }
 
 impl Session {

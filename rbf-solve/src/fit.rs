@@ -3,8 +3,7 @@
 use faer::Par;
 use rayon::prelude::*;
 use rbf_core::{
-    Constraint, Fit, FitError, FitSettings, SolveMethod, System, estimate_inverse_norm1,
-    finish_with,
+    Constraint, Fit, FitError, FitSettings, Solution, SolveMethod, System, estimate_inverse_norm1,
 };
 
 use crate::lu::FullLu;
@@ -168,15 +167,14 @@ fn run<const D: usize>(
         b[k..].copy_from_slice(&y);
         b.iter().all(|v| v.is_finite())
     });
-    finish_with(
-        system,
+    system.accept(
         settings,
-        (&w, &p),
-        (method, norm1 * inverse, refinements),
-        |f, points, out| {
-            if f.view().par_values(points, out).is_err() {
-                out.fill(f64::NAN);
-            }
+        &Solution {
+            weights: &w,
+            polynomial: &p,
+            method,
+            condition: norm1 * inverse,
+            refinements,
         },
     )
 }

@@ -153,6 +153,7 @@ fn mesh_workloads(repeats: usize, threads: usize, records: &mut Vec<String>) {
                 supersampling: s,
                 method: VoxelMethod::Rays,
                 margin: 2,
+                memory_limit: None,
             };
             record(
                 format!("vox_rbf_rays_s{s}[mesh=icosphere,res={res}]"),

@@ -1,6 +1,6 @@
 //! Evaluation in f32 (as on a Cortex-M4F) against f64.
 
-use rbf_core::{Constraint, FitSettings, InterpolantView, Kernel, fit};
+use rbf_core::{FitSettings, InterpolantView, Kernel, fit};
 
 #[test]
 fn f32_values_match_f64_to_f32_precision() {

@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use super::{at_byte, at_line, number};
-use crate::mesh::{cross, norm, sub};
+use rbf_core::vec3::{cross, norm, sub};
 use crate::{MeshError, TriMesh};
 
 type Parts = (Vec<[f64; 3]>, Vec<[u32; 3]>);

@@ -54,10 +54,10 @@ pub(crate) fn cells(
             }
         }
         let points: Vec<[f64; 3]> = needed.iter().map(|&p| lattice.point(p)).collect();
-        let mut values = vec![0.0; points.len()];
+        let mut found = vec![0.0; points.len()];
         // Equal lengths by construction.
-        let _ = f.par_values(&points, &mut values);
-        for (p, v) in needed.into_iter().zip(values) {
+        let _ = f.par_values(&points, &mut found);
+        for (p, v) in needed.into_iter().zip(found) {
             values.insert(p, v);
         }
         let mut next = Vec::new();

@@ -56,7 +56,7 @@ pub(crate) fn cells(
             let lo = coarse_point(block);
             let hi = coarse_point([block[0] + 1, block[1] + 1, block[2] + 1]);
             let (a, c) = (lattice.point(lo), lattice.point(hi));
-            let half_diagonal = 0.5 * crate::mesh::norm(crate::mesh::sub(c, a));
+            let half_diagonal = 0.5 * rbf_core::vec3::norm(rbf_core::vec3::sub(c, a));
             let corners = (0..8).map(|k: i64| {
                 coarse([
                     block[0] + (k & 1),
@@ -74,7 +74,7 @@ pub(crate) fn cells(
                     // Every point of the block is within half a diagonal of a corner.
                     let (mut slope, mut smallest, mut positive) = (0.0_f64, f64::INFINITY, 0);
                     for k in corners {
-                        slope = slope.max(crate::mesh::norm(gradients[k]));
+                        slope = slope.max(rbf_core::vec3::norm(gradients[k]));
                         smallest = smallest.min(values[k].abs());
                         positive += usize::from(values[k] > 0.0);
                     }

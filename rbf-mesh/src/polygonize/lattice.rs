@@ -137,9 +137,9 @@ pub(crate) fn cell_triangles(
         let direction = [to[0] - from[0], to[1] - from[1], to[2] - from[2]];
         for t in tris {
             let [p, q, r] = t.map(|(a, b)| mid(a, b));
-            let n = crate::mesh::cross(crate::mesh::sub(q, p), crate::mesh::sub(r, p));
+            let n = rbf_core::vec3::cross(rbf_core::vec3::sub(q, p), rbf_core::vec3::sub(r, p));
             let keys = t.map(|(a, b)| edge(a, b));
-            if crate::mesh::dot(n, direction) >= 0.0 {
+            if rbf_core::vec3::dot(n, direction) >= 0.0 {
                 out.push(keys);
             } else {
                 out.push([keys[0], keys[2], keys[1]]);

@@ -160,7 +160,7 @@ pub(crate) fn assemble(
     let normals: Vec<[f64; 3]> = searches
         .iter()
         .map(|s| {
-            let l = crate::mesh::norm(s.gradient);
+            let l = rbf_core::vec3::norm(s.gradient);
             if l > 0.0 {
                 s.gradient.map(|c| -c / l)
             } else {

@@ -1,7 +1,11 @@
-//! Reading inputs (files or stdin) and writing outputs without leaving half-written files.
+//! What every command shares: reading inputs (files or stdin), writing outputs without leaving
+//! half-written files, the built-in mesh, and the spinner shown while a long step runs.
 
 use std::io::{Read, Write};
 use std::path::Path;
+use std::time::Duration;
+
+use indicatif::{ProgressBar, ProgressDrawTarget};
 
 use crate::failure::{BAD_INPUT, Failure};
 
@@ -58,4 +62,24 @@ pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Failure>
         return Err(fail(e));
     }
     Ok(())
+}
+
+/// Spot the cow (Keenan Crane, public domain; see NOTICE.md), inside the binary for `rbf demo`
+/// and `rbf gallery`.
+pub(crate) const SPOT: &[u8] = include_bytes!("../assets/spot.obj");
+
+/// A mesh file (OBJ, PLY, STL); a failure names the file and, for a parse error, the line.
+pub(crate) fn read_mesh(path: &Path) -> Result<rbf_mesh::TriMesh, Failure> {
+    rbf_mesh::read_mesh(path).map_err(|e| Failure::mesh(&e))
+}
+
+/// A spinner on stderr while a long step runs, if stderr is a terminal and not `--quiet`.
+pub(crate) fn spinner(quiet: bool, message: String) -> ProgressBar {
+    let bar = ProgressBar::new_spinner();
+    if quiet {
+        bar.set_draw_target(ProgressDrawTarget::hidden());
+    }
+    bar.set_message(message);
+    bar.enable_steady_tick(Duration::from_millis(120));
+    bar
 }

@@ -1,0 +1,52 @@
+//! Why a conversion, a comparison or a blend failed.
+
+use rbf_core::{FitError, Kernel};
+use rbf_mesh::MeshError;
+
+/// Why a mesh could not be converted (by either method), compared with a model, or models
+/// blended. Each variant names what was wrong; the CLI prints them as they are.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ConvertError {
+    /// No vertex has a usable normal.
+    #[error("no vertex of the mesh has a usable normal (all faces degenerate?)")]
+    NoNormals,
+    /// The fit of the chosen constraints failed; the error names the constraint or the cause.
+    #[error(transparent)]
+    Fit(#[from] FitError),
+    /// The mesh could not be voxelized or polygonized (too large, too small, invalid).
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    /// No voxel centre lies inside the goal: the mesh is flat or open, or the resolution is too
+    /// coarse to hold its interior.
+    #[error(
+        "no voxel is inside the mesh: it is flat or open, or the resolution is too coarse to hold its interior"
+    )]
+    EmptyGoal,
+    /// The settings allow no iteration (`max_iterations` is 0).
+    #[error("no iteration ran: max_iterations must be at least 1")]
+    NoIteration,
+    /// The mesh to compare with has no area to sample.
+    #[error("the mesh has no area to measure from")]
+    NoArea,
+    /// The model to compare has no surface near its constraints.
+    #[error("the model has no surface (f does not change sign near its constraints)")]
+    NoSurface,
+    /// `blend` was given no model.
+    #[error("nothing to blend: give at least one model")]
+    NothingToBlend,
+    /// Models of different kernels cannot be blended (1-based model number).
+    #[error(
+        "model {model} has kernel {}, model 1 has {}: blend models of one kernel",
+        found.name(),
+        expected.name()
+    )]
+    KernelMismatch {
+        /// 1-based number of the first model whose kernel differs from model 1's.
+        model: usize,
+        /// Model 1's kernel.
+        expected: Kernel,
+        /// That model's kernel.
+        found: Kernel,
+    },
+}
