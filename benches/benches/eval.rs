@@ -19,10 +19,20 @@ fn eval(c: &mut Criterion) {
     group.sample_size(10);
     group.throughput(Throughput::Elements(points.len() as u64));
     group.bench_function(BenchmarkId::new("parallel-f64", points.len()), |b| {
-        b.iter(|| f64_model.view().par_values(&points, &mut out).expect("lengths"))
+        b.iter(|| {
+            f64_model
+                .view()
+                .par_values(&points, &mut out)
+                .expect("lengths")
+        })
     });
     group.bench_function(BenchmarkId::new("parallel-f32", points.len()), |b| {
-        b.iter(|| f32_model.view().par_values(&points32, &mut out32).expect("lengths"))
+        b.iter(|| {
+            f32_model
+                .view()
+                .par_values(&points32, &mut out32)
+                .expect("lengths")
+        })
     });
     let few = &points[..8192];
     group.throughput(Throughput::Elements(few.len() as u64));

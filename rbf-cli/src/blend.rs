@@ -6,8 +6,8 @@ use std::time::Instant;
 use clap::Args;
 use rbf_core::{AnyModel, Model};
 
-use crate::failure::{BAD_INPUT, Failure, USAGE};
 use crate::common::{read_model, write_atomically};
+use crate::failure::{BAD_INPUT, Failure, USAGE};
 
 pub(crate) const HELP: &str = "\
 Each model keeps the constraints that lie outside all the others; one interpolant is fitted

@@ -7,8 +7,8 @@ use std::time::Instant;
 use clap::Args;
 use rbf_convert::{CompareSettings, DistanceStats, surface_distance};
 
-use crate::failure::{BAD_INPUT, Failure, USAGE};
 use crate::common::{read_mesh, read_model_3d};
+use crate::failure::{BAD_INPUT, Failure, USAGE};
 
 pub(crate) const HELP: &str = "\
 Spreads points by area over the mesh and measures each to the model's surface, then spreads

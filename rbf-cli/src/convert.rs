@@ -11,8 +11,8 @@ use rbf_convert::{
 };
 use rbf_core::NormalOffset;
 
-use crate::failure::{BAD_INPUT, Failure, USAGE};
 use crate::common::{read_mesh, write_atomically};
+use crate::failure::{BAD_INPUT, Failure, USAGE};
 
 pub(crate) const HELP: &str = "\
 --method iterative (Yngve & Turk): voxelize the mesh (--resolution voxels along its longest side,

@@ -10,12 +10,15 @@ use rbf_mesh::{
     PolygonizeSettings, Resolution, polygonize_continuation, surface_seeds, write_mesh,
 };
 
-use crate::failure::{BAD_INPUT, Failure};
 use crate::common::{SPOT, write_atomically};
+use crate::failure::{BAD_INPUT, Failure};
 
 /// Radii at which the surface of f crosses rays from the origin in `directions`: where rays
 /// cast inward from radius 5 first meet it, by the renderer's sphere tracer.
-fn crossings(f: &rbf_core::Interpolant<f64, 3>, directions: &[[f64; 3]]) -> Result<Vec<f64>, Failure> {
+fn crossings(
+    f: &rbf_core::Interpolant<f64, 3>,
+    directions: &[[f64; 3]],
+) -> Result<Vec<f64>, Failure> {
     const FAR: f64 = 5.0;
     let rays: Vec<rbf_render::Ray> = directions
         .iter()

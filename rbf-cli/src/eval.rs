@@ -7,8 +7,8 @@ use clap::Args;
 use rayon::prelude::*;
 use rbf_core::{AnyModel, Model};
 
-use crate::failure::{BAD_INPUT, Failure};
 use crate::common::{read_model, read_text};
+use crate::failure::{BAD_INPUT, Failure};
 
 pub(crate) const HELP: &str = "\
 POINTS holds one point per line (x y z, or x y for a 2D model); # starts a comment.

@@ -6,8 +6,8 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use rbf_core::{AnyModel, Interpolant};
 
-use crate::failure::Failure;
 use crate::common::{read_model, write_atomically};
+use crate::failure::Failure;
 
 pub(crate) const HELP: &str = "\
 --format rust writes constant arrays and a `const` InterpolantView over them: with rbf-core

@@ -8,8 +8,8 @@ use rbf_core::{AnyModel, Constraint, ConstraintFile, FitSettings, Model, NormalO
 use rbf_solve::{GreedySettings, SolveOptions, Strategy};
 
 use crate::KernelArg;
-use crate::failure::{BAD_INPUT, Failure, USAGE};
 use crate::common::{read_text, spinner, write_atomically};
+use crate::failure::{BAD_INPUT, Failure, USAGE};
 
 pub(crate) const HELP: &str = "\
 Input formats:
@@ -351,4 +351,3 @@ impl Job<'_> {
         Ok(())
     }
 }
-

@@ -7,8 +7,8 @@ use std::time::Instant;
 use clap::Args;
 use rbf_sculpt::{FloaterSettings, Floaters};
 
-use crate::failure::{Failure, NUMERICAL, USAGE};
 use crate::common::{read_model_3d, write_atomically};
+use crate::failure::{Failure, NUMERICAL, USAGE};
 
 pub(crate) const HELP: &str = "\
 Floaters (Witkin & Heckbert 1994) stick to the surface f = 0, repel each other, split where they

@@ -12,8 +12,8 @@ use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_grid};
 use rbf_render::{Camera, Csg, Image, Object, PlotSettings, RenderSettings, plot_curve, render};
 use serde_json::{Value, json};
 
-use crate::failure::{BAD_INPUT, Failure};
 use crate::common::{SPOT, write_atomically};
+use crate::failure::{BAD_INPUT, Failure};
 use crate::render::mesh_and_model;
 
 pub(crate) const HELP: &str = "\
@@ -397,12 +397,9 @@ fn yngve_turk_figure_3(g: &mut Gallery) -> Result<(), Failure> {
         ..Default::default()
     };
     let mut steps: Vec<(Model<2>, f64, f64)> = Vec::new();
-    rbf_convert::convert_iterative_2d(
-        shapes::teapot_silhouette,
-        bounds,
-        &settings,
-        |it, model| steps.push((model.clone(), it.max_error, it.rms_error)),
-    )
+    rbf_convert::convert_iterative_2d(shapes::teapot_silhouette, bounds, &settings, |it, model| {
+        steps.push((model.clone(), it.max_error, it.rms_error))
+    })
     .map_err(|e| match e {
         rbf_convert::ConvertError::Fit(f) => Failure::fit("teapot", &f),
         other => bad(other),
@@ -429,7 +426,10 @@ fn yngve_turk_figure_3(g: &mut Gallery) -> Result<(), Failure> {
         });
     }
     let strip = strip.ok_or_else(|| bad("the 2D conversion ran no iteration"))?;
-    let errors: Vec<Value> = steps.iter().map(|(m, max, rms)| json!({"max": max, "rms": rms, "constraints": m.constraints.len()})).collect();
+    let errors: Vec<Value> = steps
+        .iter()
+        .map(|(m, max, rms)| json!({"max": max, "rms": rms, "constraints": m.constraints.len()}))
+        .collect();
     g.add("yngve-fig3", "Yngve & Turk, Fig. 3: iterative refinement in 2D, steps 1, 2, 3 and the last; the goal in grey, constraints marked.", &strip, json!({"steps": errors}))
 }
 

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use clap::Args;
 use rbf_core::{AnyModel, ConstraintKind, Model};
 
-use crate::failure::Failure;
 use crate::common::read_model;
+use crate::failure::Failure;
 
 #[derive(Args, Debug)]
 pub(crate) struct InfoArgs {

@@ -9,8 +9,8 @@ use rbf_mesh::{
     write_mesh,
 };
 
-use crate::failure::{BAD_INPUT, Failure};
 use crate::common::read_model_3d;
+use crate::failure::{BAD_INPUT, Failure};
 
 pub(crate) const HELP: &str = "\
 Both methods split the cube lattice into tetrahedra (no ambiguous cases), so a closed surface

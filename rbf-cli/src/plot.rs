@@ -6,8 +6,8 @@ use clap::Args;
 use rbf_core::AnyModel;
 use rbf_render::{PlotSettings, plot_curve};
 
-use crate::failure::{BAD_INPUT, Failure, USAGE};
 use crate::common::{read_text, write_atomically};
+use crate::failure::{BAD_INPUT, Failure, USAGE};
 
 pub(crate) const HELP: &str = "\
 Draws the curve f = 0 and marks the constraints as in the paper's figures: boundary

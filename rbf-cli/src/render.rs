@@ -9,8 +9,8 @@ use rbf_render::{
     Camera, Csg, Lipschitz, MeshStyle, Object, RenderSettings, render, render_mesh, surface_bounds,
 };
 
-use crate::failure::{BAD_INPUT, Failure, USAGE};
 use crate::common::{read_mesh, read_model_3d, write_atomically};
+use crate::failure::{BAD_INPUT, Failure, USAGE};
 
 pub(crate) const HELP: &str = "\
 Models are sphere traced: every step is bounded by a Lipschitz constant proved per cell from
@@ -162,14 +162,8 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
         } else {
             MeshStyle::Flat
         };
-        render_mesh(
-            &mesh,
-            &camera,
-            style,
-            [0.80, 0.36, 0.18],
-            &settings,
-        )
-        .map_err(|e| Failure::new(BAD_INPUT, format!("{}: {e}", path.display())))?
+        render_mesh(&mesh, &camera, style, [0.80, 0.36, 0.18], &settings)
+            .map_err(|e| Failure::new(BAD_INPUT, format!("{}: {e}", path.display())))?
     } else {
         let models: Vec<Model<3>> = args
             .inputs
@@ -267,7 +261,6 @@ fn camera(args: &RenderArgs, lo: [f64; 3], hi: [f64; 3]) -> Camera {
     camera
 }
 
-
 /// A mesh (left, rasterized) and a model (right, traced) from one camera, with shadows.
 pub(crate) fn mesh_and_model(
     mesh: &rbf_mesh::TriMesh,
@@ -280,14 +273,8 @@ pub(crate) fn mesh_and_model(
         ..Default::default()
     };
     let bad = |e: rbf_render::RenderError| Failure::new(BAD_INPUT, e.to_string());
-    let left = rbf_render::render_mesh(
-        mesh,
-        camera,
-        style,
-        [0.80, 0.36, 0.18],
-        &look,
-    )
-    .map_err(bad)?;
+    let left =
+        rbf_render::render_mesh(mesh, camera, style, [0.80, 0.36, 0.18], &look).map_err(bad)?;
     let views = [model.interpolant.view()];
     let objects = [rbf_render::Object::new(rbf_render::Csg::Model(0), 0)];
     let (right, _) = rbf_render::render(&views, &objects, camera, &look).map_err(bad)?;

@@ -7,8 +7,8 @@ use clap::Args;
 use rbf_render::{Camera, Csg, Object, RenderSettings, render};
 use rbf_sculpt::{COMMANDS, Session, parse_command, parse_commands, parse_script};
 
-use crate::failure::{BAD_INPUT, Failure, NUMERICAL};
 use crate::common::{read_text, write_atomically};
+use crate::failure::{BAD_INPUT, Failure, NUMERICAL};
 
 pub(crate) const HELP: &str = "\
 Edits start from the paper's blob (through the corners of a tetrahedron, eight exterior

@@ -6,8 +6,8 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use rbf_mesh::{VoxelMethod, VoxelSettings, signed_distance, voxelize};
 
-use crate::failure::{BAD_INPUT, Failure};
 use crate::common::{read_mesh, write_atomically};
+use crate::failure::{BAD_INPUT, Failure};
 
 pub(crate) const HELP: &str = "\
 Writes OUT.npy, a float32 array indexed [x][y][z] (numpy.load reads it), and beside it OUT.json

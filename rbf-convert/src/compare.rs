@@ -109,8 +109,7 @@ pub fn surface_distance(
         resolution: Resolution::CellSize(cell_size),
         ..Default::default()
     };
-    let (surface, _) =
-        polygonize_grid(f, &polygonize)?;
+    let (surface, _) = polygonize_grid(f, &polygonize)?;
     let surface_points = sample_surface(&surface, settings.samples, settings.seed);
     if surface_points.is_empty() {
         return Err(ConvertError::NoSurface);

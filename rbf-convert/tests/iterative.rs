@@ -156,3 +156,51 @@ fn flat_meshes_and_hopeless_resolutions_are_clear_errors() {
     .unwrap_err();
     assert!(e.to_string().contains("too coarse"), "{e}");
 }
+
+/// The 2D entry (Yngve & Turk 2002, Figure 3) on a ring: the curve comes within the target
+/// error of the goal's boundary, the hole stays outside, the band inside, and the same pixels
+/// are classed as the goal's except along the boundary.
+#[test]
+fn a_ring_converts_in_2d_with_its_hole() {
+    let (inner, outer) = (0.45, 1.0);
+    let ring = |p: [f64; 2]| {
+        let r = (p[0] * p[0] + p[1] * p[1]).sqrt();
+        r > inner && r < outer
+    };
+    let settings = rbf_convert::IterativeSettings {
+        resolution: 64,
+        ..Default::default()
+    };
+    let mut seen = 0;
+    let (curve, report) =
+        rbf_convert::convert_iterative_2d(ring, ([-1.1; 2], [1.1; 2]), &settings, |it, model| {
+            seen += 1;
+            assert_eq!(
+                model.constraints.len(),
+                it.boundary + it.interior + it.exterior
+            );
+        })
+        .unwrap();
+    assert_eq!(seen, report.iterations.len());
+    assert_eq!(report.shape[2], 1);
+    let best = report.iterations[report.best - 1];
+    assert!(best.max_error <= settings.target_error, "{best:?}");
+    let f = &curve.interpolant;
+    assert!(f.value(&[0.0, 0.0]) < 0.0, "the hole is outside");
+    let pixel = report.voxel_size;
+    for k in 0..64 {
+        let a = std::f64::consts::TAU * k as f64 / 64.0;
+        let at = |r: f64| f.value(&[r * a.cos(), r * a.sin()]);
+        assert!(
+            at(0.5 * (inner + outer)) > 0.0,
+            "the band is inside at angle {a}"
+        );
+        // Farther than two pixels from the goal's boundary, the classes agree.
+        for r in [inner - 2.0 * pixel, outer + 2.0 * pixel] {
+            assert!(at(r) < 0.0, "outside at radius {r}, angle {a}");
+        }
+        for r in [inner + 2.0 * pixel, outer - 2.0 * pixel] {
+            assert!(at(r) > 0.0, "inside at radius {r}, angle {a}");
+        }
+    }
+}

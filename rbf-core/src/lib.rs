@@ -70,30 +70,25 @@ pub use kernel::Kernel;
 pub use real::Real;
 pub use view::{InterpolantView, LengthMismatch};
 
-#[cfg(feature = "alloc")]
-mod condition;
-#[cfg(feature = "alloc")]
-mod constraint;
-#[cfg(feature = "alloc")]
-mod dense;
-#[cfg(feature = "alloc")]
-mod error;
-#[cfg(feature = "alloc")]
-mod fit;
-#[cfg(feature = "alloc")]
-mod interpolant;
-#[cfg(feature = "alloc")]
-mod knot;
-#[cfg(feature = "alloc")]
-mod model;
-#[cfg(feature = "alloc")]
-mod settings;
-#[cfg(feature = "alloc")]
-pub mod shapes;
-#[cfg(feature = "alloc")]
-mod system;
-#[cfg(feature = "alloc")]
-mod text;
+/// Items that need an allocator: built only with the `alloc` feature.
+macro_rules! with_alloc {
+    ($($item:item)*) => { $( #[cfg(feature = "alloc")] $item )* };
+}
+
+with_alloc! {
+    mod condition;
+    mod constraint;
+    mod dense;
+    mod error;
+    mod fit;
+    mod interpolant;
+    mod knot;
+    mod model;
+    mod settings;
+    pub mod shapes;
+    mod system;
+    mod text;
+}
 
 #[cfg(feature = "alloc")]
 pub use {

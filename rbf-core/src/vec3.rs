@@ -57,7 +57,7 @@ pub fn norm(a: Vec3) -> f64 {
 ///
 /// ```
 /// use rbf_core::vec3::normalize;
-/// assert_eq!(normalize([3.0, 0.0, 4.0]), [0.6, 0.0, 0.8]);
+/// assert_eq!(normalize([0.0, 0.0, 2.0]), [0.0, 0.0, 1.0]);
 /// assert_eq!(normalize([0.0; 3]), [0.0; 3]);
 /// ```
 #[inline]

@@ -138,12 +138,7 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
         let mut sum = T::ZERO;
         let mut grad = self.linear;
         for (c, &w) in self.centres.iter().zip(self.weights) {
-            let mut t = [T::ZERO; D];
-            let mut r2 = T::ZERO;
-            for d in 0..D {
-                t[d] = x[d] - c[d];
-                r2 += t[d] * t[d];
-            }
+            let (t, r2) = offset(x, c);
             let (phi, g, _) = K::terms_r2(r2);
             sum += w * phi;
             let wg = w * g;
@@ -178,12 +173,7 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
         let mut grad = self.linear;
         let mut hess = [[T::ZERO; D]; D];
         for (c, &w) in self.centres.iter().zip(self.weights) {
-            let mut t = [T::ZERO; D];
-            let mut r2 = T::ZERO;
-            for d in 0..D {
-                t[d] = x[d] - c[d];
-                r2 += t[d] * t[d];
-            }
+            let (t, r2) = offset(x, c);
             let (phi, g, h) = K::terms_r2(r2);
             sum += w * phi;
             let wg = w * g;
@@ -418,4 +408,16 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
             (*v, *g) = self.value_gradient_with::<K>(p);
         }
     }
+}
+
+/// x − c and its squared length.
+#[inline(always)]
+fn offset<T: Real, const D: usize>(x: &[T; D], c: &[T; D]) -> ([T; D], T) {
+    let mut t = [T::ZERO; D];
+    let mut r2 = T::ZERO;
+    for d in 0..D {
+        t[d] = x[d] - c[d];
+        r2 += t[d] * t[d];
+    }
+    (t, r2)
 }

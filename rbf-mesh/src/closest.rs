@@ -1,8 +1,8 @@
 //! The nearest point of a mesh to a query point, through the bounding hierarchy of
 //! [`WindingTree`].
 
-use rbf_core::vec3::{dot, norm, sub};
 use crate::winding::WindingTree;
+use rbf_core::vec3::{dot, norm, sub};
 
 /// The point of triangle (a, b, c) nearest to p, by the Voronoi regions of its corners, edges
 /// and face (Ericson, Real-Time Collision Detection, §5.1.5).

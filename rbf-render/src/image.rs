@@ -155,15 +155,9 @@ impl Image {
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-        let mut writer = encoder
-            .write_header()
-            ?;
-        writer
-            .write_image_data(&self.to_srgb8())
-            ?;
-        writer
-            .finish()
-            ?;
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(&self.to_srgb8())?;
+        writer.finish()?;
         Ok(bytes)
     }
 }

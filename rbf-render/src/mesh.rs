@@ -120,7 +120,12 @@ pub fn render_mesh(
     }
     let normals = match style {
         MeshStyle::Flat => None,
-        MeshStyle::Smooth => Some(mesh.vertex_normals().into_iter().map(normalize).collect::<Vec<_>>()),
+        MeshStyle::Smooth => Some(
+            mesh.vertex_normals()
+                .into_iter()
+                .map(normalize)
+                .collect::<Vec<_>>(),
+        ),
     };
     let lights = settings
         .lights

@@ -132,21 +132,12 @@ pub fn plot_curve(
         let at = to_pixel(c.position);
         match c.kind {
             ConstraintKind::Boundary => ring(&mut image, at, size, 1.6, BOUNDARY),
+            // The paper's marks: + inside, − outside.
             ConstraintKind::Interior => {
-                segment(
-                    &mut image,
-                    (at.0 - size, at.1),
-                    (at.0 + size, at.1),
-                    2.0,
-                    INTERIOR,
-                );
-                segment(
-                    &mut image,
-                    (at.0, at.1 - size),
-                    (at.0, at.1 + size),
-                    2.0,
-                    INTERIOR,
-                );
+                let bar = |(dx, dy): Pixel| ((at.0 - dx, at.1 - dy), (at.0 + dx, at.1 + dy));
+                for (from, to) in [bar((size, 0.0)), bar((0.0, size))] {
+                    segment(&mut image, from, to, 2.0, INTERIOR);
+                }
             }
             ConstraintKind::Exterior => {
                 segment(

@@ -273,7 +273,6 @@ pub fn first_hits(
     Ok(tracer.trace(rays, &limits, &mut TraceCounts::default()))
 }
 
-
 impl Renderer<'_, '_> {
     /// The nearest hit of each ray: the solids and the ground.
     fn nearest(&self, rays: &[Ray], counts: &mut TraceCounts) -> Vec<Hit> {

@@ -224,7 +224,11 @@ mod tests {
             ("  move -1 0 0 0", 8, "`-1` is not an item number"),
             ("undo 3", 1, "usage: undo"),
             ("smooth 3", 1, "unknown command `smooth`"),
-            ("add 1 2 ∞ # the ∞ is one character", 9, "`∞` is not a finite number"),
+            (
+                "add 1 2 ∞ # the ∞ is one character",
+                9,
+                "`∞` is not a finite number",
+            ),
         ] {
             let e = parse_command(line).unwrap_err();
             assert_eq!((e.line, e.column), (1, column), "{line}");

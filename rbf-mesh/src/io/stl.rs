@@ -4,8 +4,8 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use super::{at_byte, at_line, number};
-use rbf_core::vec3::{cross, norm, sub};
 use crate::{MeshError, TriMesh};
+use rbf_core::vec3::{cross, norm, sub};
 
 type Parts = (Vec<[f64; 3]>, Vec<[u32; 3]>);
 

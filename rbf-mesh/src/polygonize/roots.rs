@@ -11,7 +11,6 @@ use crate::{MeshError, TriMesh};
 /// where f is exactly zero at a lattice point (the surface then touches that point).
 const END_MARGIN: f64 = 1e-6;
 
-
 /// Where the root search along one edge stands.
 #[derive(Clone, Copy)]
 struct Search {
