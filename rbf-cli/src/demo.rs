@@ -133,23 +133,23 @@ pub(crate) fn run(dir: &Path, quiet: bool) -> Result<(), Failure> {
     convert_builtin(dir, &say)?;
     say("\nThe paper's first examples:".into());
 
-    let mut examples: Vec<(&str, &str, Vec<Constraint<3>>)> = Vec::new();
-    examples.push((
-        "figure2-blob",
-        "tetrahedron + centre (paper 000, Fig. 2 left)",
-        shapes::tetrahedron_blob(),
-    ));
-    examples.push((
-        "sculpt-start",
-        "tetrahedron in a cube of side 6 (§5)",
-        shapes::sculpt_start(),
-    ));
-    examples.push((
-        "torus-2000",
-        "2000 oriented points on a torus (4000 rows)",
-        shapes::torus(2000, 0.35),
-    ));
-
+    let examples: [(&str, &str, Vec<Constraint<3>>); 3] = [
+        (
+            "figure2-blob",
+            "tetrahedron + centre (Turk & O'Brien 2002, Fig. 2 left)",
+            shapes::tetrahedron_blob(),
+        ),
+        (
+            "sculpt-start",
+            "tetrahedron in a cube of side 6 (§5)",
+            shapes::sculpt_start(),
+        ),
+        (
+            "torus-2000",
+            "2000 oriented points on a torus (4000 rows)",
+            shapes::torus(2000, 0.35),
+        ),
+    ];
     for (name, what, constraints) in examples {
         let start = Instant::now();
         let fit = rbf_solve::fit(&constraints, &settings).map_err(|e| Failure::fit(name, &e))?;

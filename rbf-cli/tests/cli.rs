@@ -35,7 +35,7 @@ fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
 }
 
 const TETRAHEDRON: &str = "\
-# x y z value: the tetrahedron of paper 000, Figure 2, around an interior point
+# x y z value: the tetrahedron of Turk & O'Brien 2002, Figure 2, around an interior point
 0.57735 0.57735 0.57735 0
 0.57735 -0.57735 -0.57735 0
 -0.57735 0.57735 -0.57735 0
