@@ -5,76 +5,10 @@
 use std::time::Instant;
 
 use rbf_core::{Constraint, ConstraintKind, FitSettings, Model};
-use rbf_mesh::{TriMesh, Volume, VoxelMethod, VoxelSettings, WindingTree, voxelize};
+use rbf_mesh::{TriMesh, Volume, VoxelSettings, WindingTree, voxelize};
 
-use crate::ConvertError;
 use crate::goal::{Goal, summary};
-
-/// Every parameter of the paper, with its value as the default.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct IterativeSettings {
-    /// Voxels along the longest side of the mesh's bounding box.
-    pub resolution: usize,
-    /// Empty voxels around the box.
-    pub margin: usize,
-    /// Sub-samples per voxel axis for the densities.
-    pub supersampling: usize,
-    /// Inside test of the voxelizer (rays for watertight meshes, winding numbers otherwise).
-    pub voxel_method: VoxelMethod,
-    /// Boundary constraints placed before the first fit (§5.1): 50.
-    pub initial_constraints: usize,
-    /// Stop when the maximum error is at most this many voxels (§5.4): 1.
-    pub target_error: f64,
-    /// Stop after this many iterations without improvement (§5.4): 4.
-    pub patience: usize,
-    /// Stop after this many iterations (§5.4): 30.
-    pub max_iterations: usize,
-    /// Stop at this many constraints (§5.4): 5000.
-    pub max_constraints: usize,
-    /// Spacing of the coarse evaluation lattice in voxels (§5.2): 4.
-    pub coarse_step: usize,
-    /// Blocks within this many voxels of the goal's boundary are evaluated finely (§5.2): 8.
-    pub shell: f64,
-    /// Candidates nearer than this many voxels to a constraint are discarded (§5.3): 1.
-    pub min_spacing: f64,
-    /// Candidates with less than this fraction of the iteration's maximum error are
-    /// discarded (§5.3): 0.5.
-    pub error_fraction: f64,
-    /// Regularization λ of every fit (Yngve & Turk 2002, §6.3).
-    pub lambda: f64,
-    /// Blocks of the shell whose corners agree in sign and stand farther from f = 0 than 1.5
-    /// half-diagonals of the block, by the first-order estimate |f| / |∇f| at every corner, are
-    /// filled without evaluating them voxel by voxel: every point of a block is within half a
-    /// diagonal of a corner (not in the paper, whose thick shell took most of its time). true.
-    pub gradient_skip: bool,
-    /// At most this fraction of the current constraint count is added in one iteration (not in
-    /// the paper, which adds every candidate that survives pruning: near the end that can
-    /// triple the count in one step). 0.3.
-    pub max_growth: f64,
-}
-
-impl Default for IterativeSettings {
-    fn default() -> Self {
-        Self {
-            resolution: 128,
-            margin: 3,
-            supersampling: 4,
-            voxel_method: VoxelMethod::Auto,
-            initial_constraints: 50,
-            target_error: 1.0,
-            patience: 4,
-            max_iterations: 30,
-            max_constraints: 5000,
-            coarse_step: 4,
-            shell: 8.0,
-            min_spacing: 1.0,
-            error_fraction: 0.5,
-            lambda: 0.0,
-            max_growth: 0.3,
-            gradient_skip: true,
-        }
-    }
-}
+use crate::{ConvertError, IterativeSettings};
 
 /// Constraint counts, boundary errors and timings of one fit-and-refine iteration.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -35,12 +35,13 @@ mod iterative;
 mod nearest;
 mod normals;
 mod poisson;
+mod settings;
 
 pub use blend::{BlendReport, blend};
 pub use compare::{CompareSettings, DistanceStats, SurfaceDistance, surface_distance};
 pub use error::ConvertError;
-pub use iterative::{
-    IterationReport, IterativeReport, IterativeSettings, convert_iterative, convert_iterative_2d,
-};
+pub use iterative::{IterationReport, IterativeReport, convert_iterative, convert_iterative_2d};
 pub use normals::{NormalReport, NormalSettings, convert_normals};
+#[doc(hidden)]
 pub use poisson::poisson_subset;
+pub use settings::IterativeSettings;

@@ -7,6 +7,7 @@ use crate::{InterpolantView, Kernel};
 
 /// What is proved about f over a ball.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[doc(hidden)]
 pub struct BallBound {
     /// f at the centre.
     pub value: f64,
@@ -35,6 +36,7 @@ impl Kernel {
     /// assert_eq!(Kernel::Cubic.derivative_bounds(1.0, 2.0), (12.0, 12.0)); // 3r², 6r
     /// assert_eq!(Kernel::Linear.derivative_bounds(0.0, 2.0), (1.0, f64::INFINITY));
     /// ```
+    #[doc(hidden)]
     pub fn derivative_bounds(self, lo: f64, hi: f64) -> (f64, f64) {
         match self {
             // φ′ = 3r², Hessian eigenvalues 6r and 3r.
@@ -70,6 +72,7 @@ impl<const D: usize> InterpolantView<'_, f64, D> {
     /// assert!(b.one_sign()); // f < 0 throughout: the sphere is farther than 0.5
     /// assert!(!f.ball_bound(&[1.2, 0.0, 0.0], 0.5).one_sign());
     /// ```
+    #[doc(hidden)]
     pub fn ball_bound(&self, centre: &[f64; D], radius: f64) -> BallBound {
         let (value, gradient) = self.value_and_gradient(centre);
         let norm = |v: &[f64; D]| sqrt(v.iter().map(|x| x * x).sum::<f64>());

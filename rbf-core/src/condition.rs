@@ -15,6 +15,7 @@ use alloc::vec;
 /// });
 /// assert_eq!(est, 1000.0);
 /// ```
+#[doc(hidden)]
 pub fn estimate_inverse_norm1(n: usize, mut solve: impl FnMut(&mut [f64]) -> bool) -> f64 {
     if n == 0 {
         return 0.0;

@@ -133,7 +133,7 @@ fn array<const D: usize>(v: &[f64], what: &str) -> Result<[f64; D], FileError> {
 impl ConstraintRecord {
     /// The file record of `c`: `value` only for non-boundary kinds, `normal` only for normal
     /// constraints.
-    pub fn from_constraint<const D: usize>(c: &Constraint<D>) -> Self {
+    pub(crate) fn from_constraint<const D: usize>(c: &Constraint<D>) -> Self {
         Self {
             kind: c.kind,
             position: c.position.to_vec(),
@@ -145,7 +145,10 @@ impl ConstraintRecord {
     }
 
     /// The constraint of a record; `index` names it in errors.
-    pub fn to_constraint<const D: usize>(&self, index: usize) -> Result<Constraint<D>, FileError> {
+    pub(crate) fn to_constraint<const D: usize>(
+        &self,
+        index: usize,
+    ) -> Result<Constraint<D>, FileError> {
         let what = format!("constraint {index}");
         let position = array::<D>(&self.position, &format!("the position of {what}"))?;
         let mut c = match self.kind {

@@ -45,6 +45,7 @@ pub struct Fit<const D: usize> {
 /// A solution of a [`System`]'s normalized equations and how it was found: what a solver hands
 /// to [`System::accept`].
 #[derive(Clone, Copy, Debug)]
+#[doc(hidden)]
 pub struct Solution<'a> {
     /// Kernel weights, one per row, for the normalized coordinates.
     pub weights: &'a [f64],
@@ -77,6 +78,7 @@ impl<const D: usize> System<D> {
     /// };
     /// assert!(system.accept(&settings, &zeros).is_err());
     /// ```
+    #[doc(hidden)]
     pub fn accept(&self, settings: &FitSettings, solution: &Solution<'_>) -> Result<Fit<D>, FitError> {
         let Solution {
             weights,

@@ -110,7 +110,7 @@ impl Kernel {
 
     /// The power of `s` by which φ scales when every distance is scaled by `s`
     /// (exactly for r³ and r; for r² log r up to a term that the linear polynomial absorbs).
-    pub const fn scale_exponent(self) -> i32 {
+    pub(crate) const fn scale_exponent(self) -> i32 {
         match self {
             Kernel::Cubic => 3,
             Kernel::Linear => 1,
@@ -120,6 +120,7 @@ impl Kernel {
 
     /// The sign `σ` such that `σ · wᵀ Φ w > 0` for every non-zero weight vector `w` orthogonal
     /// to the linear polynomials: +1 for r³ and r² log r, −1 for r.
+    #[doc(hidden)]
     pub const fn definiteness(self) -> f64 {
         match self {
             Kernel::Linear => -1.0,

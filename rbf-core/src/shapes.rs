@@ -8,7 +8,7 @@ use crate::Constraint;
 use crate::math::{fract, sin_cos, sqrt};
 
 /// The golden angle π(3 − √5), the turn between successive points of a Fibonacci lattice.
-pub const GOLDEN_ANGLE: f64 = 2.399_963_229_728_653;
+const GOLDEN_ANGLE: f64 = 2.399_963_229_728_653;
 
 /// `n` points spread evenly over the unit sphere (a Fibonacci lattice: equal steps in z, the
 /// golden angle between successive azimuths), from the north pole down.

@@ -157,6 +157,7 @@ impl<const D: usize> System<D> {
         &self.points
     }
     /// Row points in normalized coordinates.
+    #[doc(hidden)]
     pub fn normalized_points(&self) -> &[[f64; D]] {
         &self.normalized
     }
@@ -168,21 +169,20 @@ impl<const D: usize> System<D> {
     pub fn sources(&self) -> &[RowSource] {
         &self.sources
     }
-    /// The centre of the normalization.
-    pub fn origin(&self) -> [f64; D] {
-        self.origin
-    }
     /// The scale of the normalization: half the longest side of the bounding box.
+    #[doc(hidden)]
     pub fn scale(&self) -> f64 {
         self.scale
     }
 
     /// λᵢ of row `i` in normalized units (the kernel block scales as scale^β).
+    #[doc(hidden)]
     pub fn normalized_smoothing(&self, i: usize) -> f64 {
         self.smoothing[i] / crate::math::powi(self.scale, self.kernel.scale_exponent())
     }
 
     /// Writes rows `rows` of column `j` of the normalized kernel block Φ + diag(λ) into `out`.
+    #[doc(hidden)]
     pub fn kernel_column(&self, j: usize, rows: core::ops::Range<usize>, out: &mut [f64]) {
         let cj = self.normalized[j];
         with_radial!(self.kernel, K => {
@@ -202,6 +202,7 @@ impl<const D: usize> System<D> {
 
     /// Writes column `j` (of `size()`) of the whole normalized system
     /// [Φ + Λ, P; Pᵀ, 0] into `out` (length `size()`).
+    #[doc(hidden)]
     pub fn system_column(&self, j: usize, out: &mut [f64]) {
         let k = self.rows();
         if j < k {
@@ -217,12 +218,14 @@ impl<const D: usize> System<D> {
     }
 
     /// Row `i` of the normalized polynomial block: (1, x′ᵢ).
+    #[doc(hidden)]
     pub fn polynomial_row(&self, i: usize) -> [f64; D] {
         self.normalized[i]
     }
 
     /// The interpolant of normalized weights `w` and polynomial `p` = (a, b₁…b_D), in
     /// normalized coordinates.
+    #[doc(hidden)]
     pub fn normalized_interpolant(&self, w: &[f64], p: &[f64]) -> Interpolant<f64, D> {
         let linear = core::array::from_fn(|d| p.get(d + 1).copied().unwrap_or(0.0));
         Interpolant::from_parts(
@@ -236,7 +239,7 @@ impl<const D: usize> System<D> {
 
     /// Maps normalized weights `w` and polynomial `p` = (a, b₁…b_D) back to the caller's
     /// coordinates: the returned interpolant has the row points as centres.
-    pub fn to_interpolant(&self, w: &[f64], p: &[f64]) -> Interpolant<f64, D> {
+    pub(crate) fn to_interpolant(&self, w: &[f64], p: &[f64]) -> Interpolant<f64, D> {
         let s = self.scale;
         let ws = crate::math::powi(s, self.kernel.scale_exponent());
         let weights: Vec<f64> = w.iter().map(|&x| x / ws).collect();
@@ -272,7 +275,7 @@ impl<const D: usize> System<D> {
 
     /// [`System::relative_residual`] given `fx[i]` = f(cᵢ), computed by the caller (perhaps in
     /// parallel).
-    pub fn residual_from_values(&self, f: &Interpolant<f64, D>, fx: &[f64]) -> f64 {
+    pub(crate) fn residual_from_values(&self, f: &Interpolant<f64, D>, fx: &[f64]) -> f64 {
         let mut worst = 0.0_f64;
         for (i, (&v, &w)) in fx.iter().zip(f.weights()).enumerate() {
             let r = v + self.smoothing[i] * w - self.values[i];
@@ -285,7 +288,7 @@ impl<const D: usize> System<D> {
     }
 
     /// max |hᵢ| (positive, since some value is non-zero).
-    pub fn max_abs_value(&self) -> f64 {
+    pub(crate) fn max_abs_value(&self) -> f64 {
         self.values.iter().fold(0.0, |m, v| m.max(v.abs()))
     }
 

@@ -83,6 +83,7 @@ fn line(f: &mut [f64], source: &mut [u32], s: &mut Scratch) {
 /// rbf_mesh::squared_distance_transform([5, 1, 1], &mut cost);
 /// assert_eq!(cost, vec![1.0, 0.0, 1.0, 4.0, 9.0]);
 /// ```
+#[doc(hidden)]
 pub fn squared_distance_transform(shape: [usize; 3], cost: &mut [f64]) {
     let mut source: Vec<u32> = (0..cost.len() as u32).collect();
     transform(shape, cost, &mut source);

@@ -53,6 +53,7 @@ impl<T: Copy> Volume<T> {
 /// assert!(rbf_mesh::has_other_neighbour([4, 1, 1], (1, 0, 0), inside));
 /// assert!(!rbf_mesh::has_other_neighbour([4, 1, 1], (0, 0, 0), inside));
 /// ```
+#[doc(hidden)]
 pub fn has_other_neighbour(
     shape: [usize; 3],
     (i, j, k): (usize, usize, usize),
@@ -80,6 +81,7 @@ pub fn has_other_neighbour(
 /// assert_eq!(inside.len(), 30);
 /// assert_eq!(inside.iter().filter(|&&b| b).count(), 18);
 /// ```
+#[doc(hidden)]
 pub fn classify_blocks(
     shape: [usize; 3],
     block: usize,

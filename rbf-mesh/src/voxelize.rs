@@ -58,7 +58,10 @@ impl Default for VoxelSettings {
 const BYTES_PER_VOXEL: u64 = 24;
 
 /// The grid a mesh is voxelized on.
-pub fn voxel_grid(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f32>, MeshError> {
+pub(crate) fn voxel_grid(
+    mesh: &TriMesh,
+    settings: &VoxelSettings,
+) -> Result<Volume<f32>, MeshError> {
     let (lo, hi) = mesh.bounding_box();
     let longest = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
     if settings.resolution == 0 || settings.supersampling == 0 || !(longest > 0.0) {

@@ -136,7 +136,7 @@ impl WindingTree {
     }
 
     /// The winding number at p: exact for near triangles, expansions for far clusters.
-    pub fn winding_number(&self, p: [f64; 3]) -> f64 {
+    pub(crate) fn winding_number(&self, p: [f64; 3]) -> f64 {
         if self.nodes.is_empty() {
             return 0.0;
         }
@@ -216,7 +216,7 @@ impl WindingTree {
 impl WindingTree {
     /// True when some triangle comes within `radius` of `centre` (tested on bounding spheres of
     /// the hierarchy and boxes of the triangles).
-    pub fn any_triangle_near(&self, centre: [f64; 3], radius: f64) -> bool {
+    pub(crate) fn any_triangle_near(&self, centre: [f64; 3], radius: f64) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
@@ -269,7 +269,7 @@ impl WindingTree {
     /// voxel (0, 0, 0), C order). Blocks of 4³ voxels, then of 2³, that no triangle comes near
     /// and where the winding number at the block's centre is clearly 0 or 1 take that class
     /// whole; the rest are evaluated voxel by voxel.
-    pub fn classify_grid(&self, origin: [f64; 3], h: f64, shape: [usize; 3]) -> Vec<bool> {
+    pub(crate) fn classify_grid(&self, origin: [f64; 3], h: f64, shape: [usize; 3]) -> Vec<bool> {
         crate::classify_blocks(shape, 4, |_, lo, hi| {
             let centre: [f64; 3] =
                 core::array::from_fn(|d| origin[d] + h * 0.5 * ((lo[d] + hi[d] - 1) as f64));
@@ -345,6 +345,7 @@ pub fn winding_numbers(mesh: &TriMesh, points: &[[f64; 3]]) -> Vec<f64> {
 
 /// The winding number at each point by summing every triangle's solid angle: exact, and
 /// O(points × triangles). For tests and small meshes.
+#[doc(hidden)]
 pub fn winding_numbers_exact(mesh: &TriMesh, points: &[[f64; 3]]) -> Vec<f64> {
     let corners: Vec<[[f64; 3]; 3]> = (0..mesh.triangles().len())
         .map(|t| mesh.corners(t))

@@ -42,6 +42,7 @@ mod mesh;
 mod plot;
 mod scene;
 mod shade;
+mod slope;
 mod tracer;
 
 pub use camera::{Camera, Ray};
@@ -52,4 +53,4 @@ pub use mesh::{MeshStyle, render_mesh};
 pub use plot::{PlotSettings, plot_curve};
 pub use scene::{Object, RenderStats, first_hits, render, surface_bounds};
 pub use shade::{Light, RenderSettings};
-pub use tracer::{Lipschitz, TraceCounts};
+pub use tracer::Lipschitz;

@@ -10,7 +10,9 @@ use rbf_core::{InterpolantView, Kernel};
 
 use crate::camera::Ray;
 use crate::csg::Csg;
-use rbf_core::vec3::{Vec3, along, dot, norm, sub};
+use rbf_core::vec3::{Vec3, along, dot, norm};
+
+use crate::slope::{Slope, Spread, estimate_cells, sampled_slope};
 
 /// Which Lipschitz constant steps the rays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -522,42 +524,6 @@ impl<'s, 'm> Tracer<'s, 'm> {
     }
 }
 
-/// What bounds a model's change around a point.
-#[derive(Clone, Copy, Debug)]
-enum Slope {
-    /// r³: |∇f| at the point, Σ|wⱼ| |p − cⱼ| and Σ|wⱼ|.
-    Cubic {
-        gradient: f64,
-        spread: f64,
-        total: f64,
-    },
-    /// A bound L on |∇f| around the point: f moves by at most L·s within distance s.
-    Constant(f64),
-}
-
-/// Σ|wⱼ| |x − cⱼ| as an interpolant with φ = r, and Σ|wⱼ|: the curvature bound of an r³ model.
-struct Spread {
-    centres: Vec<Vec3>,
-    weights: Vec<f64>,
-    total: f64,
-}
-
-impl Spread {
-    fn new(f: &InterpolantView<'_, f64, 3>) -> Self {
-        let weights: Vec<f64> = f.weights().iter().map(|w| w.abs()).collect();
-        Self {
-            centres: f.centres().to_vec(),
-            total: weights.iter().sum(),
-            weights,
-        }
-    }
-
-    fn view(&self) -> InterpolantView<'_, f64, 3> {
-        InterpolantView::new(Kernel::Linear, &self.centres, &self.weights, 0.0, [0.0; 3])
-            .unwrap_or_else(|_| unreachable!("as many weights as centres"))
-    }
-}
-
 /// The part of the ray inside the box, as distances along it.
 pub(crate) fn clip(ray: &Ray, lo: Vec3, hi: Vec3) -> Option<(f64, f64)> {
     let (mut a, mut b) = (f64::NEG_INFINITY, f64::INFINITY);
@@ -574,65 +540,4 @@ pub(crate) fn clip(ray: &Ray, lo: Vec3, hi: Vec3) -> Option<(f64, f64)> {
         b = b.min(t0.max(t1));
     }
     (a <= b && b >= 0.0).then_some((a, b))
-}
-
-/// Per cell: 1.5 times the largest |∇f| at its eight corners and its centre; and f at its
-/// centre.
-fn estimate_cells(
-    f: &InterpolantView<'_, f64, 3>,
-    lo: Vec3,
-    cell: Vec3,
-    n: [usize; 3],
-) -> (Vec<f64>, Vec<f64>) {
-    let m = [n[0] + 1, n[1] + 1, n[2] + 1];
-    let corners: Vec<Vec3> = (0..m[0] * m[1] * m[2])
-        .map(|i| {
-            let c = [i / (m[1] * m[2]), (i / m[2]) % m[1], i % m[2]];
-            core::array::from_fn(|d| lo[d] + c[d] as f64 * cell[d])
-        })
-        .collect();
-    let centres: Vec<Vec3> = (0..n[0] * n[1] * n[2])
-        .map(|i| {
-            let c = [i / (n[1] * n[2]), (i / n[2]) % n[1], i % n[2]];
-            core::array::from_fn(|d| lo[d] + (c[d] as f64 + 0.5) * cell[d])
-        })
-        .collect();
-    let evaluate = |points: &[Vec3]| -> (Vec<f64>, Vec<f64>) {
-        let mut values = vec![0.0; points.len()];
-        let mut gradients = vec![[0.0; 3]; points.len()];
-        // Equal lengths by construction.
-        let _ = f.par_values_and_gradients(points, &mut values, &mut gradients);
-        (values, gradients.into_iter().map(norm).collect())
-    };
-    let (_, corner_slopes) = evaluate(&corners);
-    let (centre_values, centre_slopes) = evaluate(&centres);
-    let slopes = (0..centres.len())
-        .map(|i| {
-            let c = [i / (n[1] * n[2]), (i / n[2]) % n[1], i % n[2]];
-            let mut most = centre_slopes[i];
-            for k in 0..8 {
-                let q = [c[0] + (k & 1), c[1] + ((k >> 1) & 1), c[2] + (k >> 2)];
-                most = most.max(corner_slopes[(q[0] * m[1] + q[1]) * m[2] + q[2]]);
-            }
-            1.5 * most
-        })
-        .collect();
-    (slopes, centre_values)
-}
-
-/// The paper's estimate: the largest |∇f| over `count` points spread through the box (a
-/// low-discrepancy sequence, so that the result does not depend on a random seed).
-fn sampled_slope(f: &InterpolantView<'_, f64, 3>, lo: Vec3, hi: Vec3, count: usize) -> f64 {
-    let size = sub(hi, lo);
-    (0..count.max(1))
-        .map(|i| {
-            // Additive recurrence with the plastic number's powers (R3 sequence).
-            let g = 1.220_744_084_605_759_5_f64;
-            let alpha = [1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g)];
-            let p: Vec3 = core::array::from_fn(|d| {
-                lo[d] + size[d] * (0.5 + alpha[d] * (i + 1) as f64).fract()
-            });
-            norm(f.gradient(&p))
-        })
-        .fold(0.0, f64::max)
 }

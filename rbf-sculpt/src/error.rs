@@ -69,7 +69,9 @@ pub enum ParseProblem {
     #[error("usage: {0}")]
     Usage(String),
     /// A word that is no command.
-    #[error("unknown command `{0}`; the commands:\n{commands}", commands = crate::COMMANDS)]
+    #[error(
+        "unknown command `{0}`: the commands are add, pick, interior, exterior, move, normal, tip, delete, undo and redo"
+    )]
     UnknownCommand(String),
     /// A script that is not a JSON array of edits; serde_json's account of it.
     #[error("{0}")]

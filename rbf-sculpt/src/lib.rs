@@ -36,4 +36,5 @@ pub use session::{Item, Session};
 
 /// A script of edits (JSON, see [`parse_script`]) that sculpts a torus from the paper's start:
 /// Turk & O'Brien (2002), Figure 7. The gallery replays it; `scripts/torus.json` is the file.
+#[doc(hidden)]
 pub const TORUS_SCRIPT: &str = include_str!("../scripts/torus.json");

@@ -11,6 +11,7 @@ use crate::probe::memory_budget;
 /// assert!(rbf_solve::check_fits(1000, 1).is_ok()); // 8 MB
 /// assert!(rbf_solve::check_fits(10_000_000, 1).is_err()); // 800 TB
 /// ```
+#[doc(hidden)]
 pub fn check_fits(rows: usize, matrices: u64) -> Result<(), FitError> {
     let n = rows as u64;
     let bytes = n
@@ -96,6 +97,7 @@ fn advise_huge_pages<T>(_buffer: &mut [T]) {}
 /// let few = [Constraint::boundary([0.0; 3])];
 /// assert!(rbf_solve::check_constraints_fit(&few).is_ok());
 /// ```
+#[doc(hidden)]
 pub fn check_constraints_fit<const D: usize>(
     constraints: &[rbf_core::Constraint<D>],
 ) -> Result<(), FitError> {
