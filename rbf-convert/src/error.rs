@@ -20,9 +20,35 @@ pub enum ConvertError {
     /// No voxel centre lies inside the goal: the mesh is flat or open, or the resolution is too
     /// coarse to hold its interior.
     #[error(
-        "no voxel is inside the mesh: it is flat or open, or the resolution is too coarse to hold its interior"
+        "no voxel is inside the mesh or region: it is flat or open, or the resolution is too coarse to hold its interior"
     )]
     EmptyGoal,
+    /// The box of a 2D conversion has no area or is not finite, or its resolution is 0.
+    #[error(
+        "the box {lo:?} – {hi:?} at resolution {resolution} has no pixels: give a box of positive, finite size and a resolution of at least 1"
+    )]
+    Box {
+        /// The lower corner given.
+        lo: [f64; 2],
+        /// The upper corner given.
+        hi: [f64; 2],
+        /// Pixels along the longer side, as given.
+        resolution: usize,
+    },
+    /// A pixel grid too large for the machine (24 bytes a pixel, as the voxelizer counts).
+    #[error(
+        "a grid of {pixels} pixels is too large: it needs about {} MiB{}; use a coarser resolution",
+        bytes >> 20,
+        available.map_or(String::new(), |a| format!(" but only {} MiB can be spared", a >> 20))
+    )]
+    TooLarge {
+        /// Pixels in the grid, margins included.
+        pixels: u64,
+        /// Bytes the grid and its distances would take.
+        bytes: u64,
+        /// Bytes the machine can spare (`rbf_solve::memory_budget`), when known.
+        available: Option<u64>,
+    },
     /// The settings allow no iteration (`max_iterations` is 0).
     #[error("no iteration ran: max_iterations must be at least 1")]
     NoIteration,

@@ -104,16 +104,31 @@ pub fn convert_iterative_2d(
     progress: impl FnMut(&IterationReport, &Model<2>),
 ) -> Result<(Model<2>, IterativeReport), ConvertError> {
     let longest = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-    let h = longest / settings.resolution.max(1) as f64;
-    if !(h > 0.0 && h.is_finite()) {
-        return Err(ConvertError::EmptyGoal);
+    let h = longest / settings.resolution as f64;
+    let finite = lo.iter().chain(&hi).all(|v| v.is_finite());
+    if !(finite && hi[0] > lo[0] && hi[1] > lo[1] && h > 0.0 && h.is_finite()) {
+        return Err(ConvertError::Box {
+            lo,
+            hi,
+            resolution: settings.resolution,
+        });
     }
     let m = settings.margin;
-    let shape = [
-        ((hi[0] - lo[0]) / h).ceil().max(1.0) as usize + 2 * m,
-        ((hi[1] - lo[1]) / h).ceil().max(1.0) as usize + 2 * m,
-        1,
-    ];
+    let side = |d: usize| {
+        (((hi[d] - lo[d]) / h).ceil().max(1.0) as usize).saturating_add(m.saturating_mul(2))
+    };
+    let shape = [side(0), side(1), 1];
+    // The same rule as the voxelizer's: at most 2³³ cells, 24 bytes each within the budget.
+    let pixels = (shape[0] as u64).saturating_mul(shape[1] as u64);
+    let bytes = pixels.saturating_mul(24);
+    let available = rbf_solve::memory_budget();
+    if pixels > 1 << 33 || available.is_some_and(|a| bytes > a) {
+        return Err(ConvertError::TooLarge {
+            pixels,
+            bytes,
+            available,
+        });
+    }
     // Pixel (i, j) is centred at lo + (i − m + ½)·h, as the voxelizer places voxels.
     let origin = [
         lo[0] - (m as f64 - 0.5) * h,

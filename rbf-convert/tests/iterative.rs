@@ -204,3 +204,43 @@ fn a_ring_converts_in_2d_with_its_hole() {
         }
     }
 }
+
+/// Bad boxes and sizes of the 2D entry are errors that say what to change, never a panic.
+#[test]
+fn bad_2d_boxes_and_sizes_are_clear_errors() {
+    let disc = |p: [f64; 2]| p[0] * p[0] + p[1] * p[1] < 1.0;
+    let run = |lo: [f64; 2], hi: [f64; 2], resolution: usize| {
+        let settings = rbf_convert::IterativeSettings {
+            resolution,
+            ..Default::default()
+        };
+        rbf_convert::convert_iterative_2d(disc, (lo, hi), &settings, |_, _| {})
+            .map(|_| ())
+            .unwrap_err()
+            .to_string()
+    };
+    for (lo, hi, resolution) in [
+        ([1.0, -1.0], [-1.0, 1.0], 32),
+        ([-1.0, -1.0], [1.0, 1.0], 0),
+        ([f64::NAN, -1.0], [1.0, 1.0], 32),
+        ([-1.0, -1.0], [f64::INFINITY, 1.0], 32),
+    ] {
+        let e = run(lo, hi, resolution);
+        assert!(
+            e.contains("has no pixels"),
+            "{lo:?} {hi:?} {resolution}: {e}"
+        );
+    }
+    let e = run([-1.0; 2], [1.0; 2], 1 << 20);
+    assert!(e.contains("too large"), "{e}");
+    // A region that misses the box: nothing inside.
+    let e = rbf_convert::convert_iterative_2d(
+        |_| false,
+        ([-1.0; 2], [1.0; 2]),
+        &rbf_convert::IterativeSettings::default(),
+        |_, _| {},
+    )
+    .map(|_| ())
+    .unwrap_err();
+    assert!(e.to_string().contains("no voxel is inside"), "{e}");
+}
