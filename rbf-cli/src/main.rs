@@ -23,6 +23,7 @@ mod mesh;
 mod plot;
 mod render;
 mod sculpt;
+mod studio;
 mod voxelize;
 
 use std::path::PathBuf;
@@ -84,6 +85,9 @@ enum Command {
     /// Replay a script of sculpting edits (Turk & O'Brien 2002, §5) and write the model.
     #[command(after_help = sculpt::HELP)]
     Sculpt(sculpt::SculptArgs),
+    /// Sculpt in the browser: serve rbf studio on 127.0.0.1 (build it first: web/build.sh).
+    #[command(after_help = studio::HELP)]
+    Studio(studio::StudioArgs),
     /// Sample a model's surface evenly with floaters (positions and normals).
     #[command(after_help = floaters::HELP)]
     Floaters(floaters::FloatersArgs),
@@ -170,6 +174,7 @@ fn main() -> ExitCode {
         Command::Mesh(args) => mesh::run(&args, cli.quiet),
         Command::Voxelize(args) => voxelize::run(&args, cli.quiet),
         Command::Render(args) => render::run(&args, cli.quiet, cli.verbose),
+        Command::Studio(args) => studio::run(&args, cli.quiet),
         Command::Blend(args) => blend::run(&args, cli.quiet),
         Command::Sculpt(args) => sculpt::run(&args, cli.quiet),
         Command::Floaters(args) => floaters::run(&args, cli.quiet),

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use clap::Args;
 use rbf_render::{Camera, Csg, Object, RenderSettings, render};
-use rbf_sculpt::{COMMANDS, Session, parse_command, parse_commands, parse_script};
+use rbf_sculpt::{Answer, COMMANDS, Session, parse_commands, parse_script};
 
 use crate::common::{read_text, write_atomically};
 use crate::failure::{BAD_INPUT, Failure, NUMERICAL};
@@ -168,41 +168,20 @@ fn prompt(session: &mut Session, args: &SculptArgs, quiet: bool) -> Result<(), F
             }
             _ => {}
         }
-        let edit = match parse_command(&line) {
-            Ok(Some(edit)) => edit,
-            Ok(None) => continue,
-            Err(e) => {
-                refused += 1;
-                println!("refused: {}", e.problem);
-                continue;
-            }
-        };
-        let before = session.items().len();
         let t = Instant::now();
-        match session.apply(&edit) {
-            Ok(()) => {
+        let answer = session.run_command(&line);
+        let solve_ms = t.elapsed().as_secs_f64() * 1e3;
+        match answer {
+            Answer::Nothing => continue,
+            Answer::Applied { .. } => {
                 applied += 1;
-                let items = session.items();
-                let what = if items.len() > before {
-                    format!("item {} added", items.len() - 1)
-                } else {
-                    "done".to_string()
-                };
-                println!(
-                    "{what}; {} items; solved in {:.2} ms; f(0, 0, 0) = {:+.4}",
-                    items.iter().flatten().count(),
-                    t.elapsed().as_secs_f64() * 1e3,
-                    session.interpolant().value(&[0.0; 3])
-                );
                 if let Some(path) = &args.preview {
                     write_atomically(path, &picture(session, args.frame_size)?)?;
                 }
             }
-            Err(e) => {
-                refused += 1;
-                println!("refused: {e}");
-            }
+            Answer::Refused(_) => refused += 1,
         }
+        println!("{}", answer.line(solve_ms));
     }
     save(session)?;
     if !quiet {

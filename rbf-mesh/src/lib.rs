@@ -41,7 +41,7 @@ mod winding;
 pub use check::MeshReport;
 pub use distance::{signed_distance, squared_distance_transform};
 pub use error::{Location, MeshError};
-pub use io::{read_mesh, read_mesh_bytes, write_mesh};
+pub use io::{mesh_bytes, read_mesh, read_mesh_bytes, write_mesh};
 pub use mesh::TriMesh;
 pub use polygonize::{
     BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, polygonize_continuation,

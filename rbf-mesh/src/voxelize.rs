@@ -88,7 +88,7 @@ pub(crate) fn voxel_grid(
     // cannot hold.
     let bytes = voxels.map_or(u64::MAX, |v| (v as u64).saturating_mul(BYTES_PER_VOXEL));
     let available = settings.memory_limit;
-    if voxels.is_none_or(|v| v > 1 << 33) || available.is_some_and(|a| bytes > a) {
+    if voxels.is_none_or(|v| v as u64 > 1 << 33) || available.is_some_and(|a| bytes > a) {
         return Err(MeshError::Invalid(format!(
             "a volume of {shape:?} voxels is too large: it needs about {} MiB{}; use a coarser resolution",
             bytes >> 20,

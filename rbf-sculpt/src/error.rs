@@ -31,6 +31,9 @@ pub enum SculptError {
         /// Direction of the pick ray (any length).
         direction: [f64; 3],
     },
+    /// A model to start from whose constraints cannot be fitted; the fit's own account.
+    #[error("the model's constraints: {0}")]
+    Constraints(#[from] rbf_core::FitError),
     /// Nothing to undo or redo.
     #[error("nothing to {0}")]
     History(&'static str),

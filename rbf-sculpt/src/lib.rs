@@ -20,6 +20,7 @@
 //! assert!(s.items()[handle].is_none());
 //! ```
 
+mod answer;
 mod command;
 mod error;
 mod floaters;
@@ -27,6 +28,7 @@ mod incremental;
 mod script;
 mod session;
 
+pub use answer::Answer;
 pub use command::{COMMANDS, parse_command, parse_commands};
 pub use error::{ParseError, ParseProblem, SculptError};
 pub use floaters::{FloaterSettings, Floaters};

@@ -2,7 +2,7 @@
 //! them, changed one edit at a time, each re-solved by updating the factorization, with undo and
 //! redo and floaters that follow the surface.
 
-use rbf_core::{Constraint, FitSettings, Interpolant, Kernel, Model};
+use rbf_core::{Constraint, ConstraintKind, FitSettings, Interpolant, Kernel, Model};
 use rbf_render::{Csg, Ray, RenderSettings, first_hits};
 
 use crate::incremental::{IncrementalFit, Row};
@@ -99,6 +99,52 @@ impl Session {
                 _ => Item::Boundary(c.position),
             })
             .collect();
+        Self::from_items(&items)
+    }
+
+    /// A session that starts from a model file's constraints (from `rbf fit`, `rbf convert` or
+    /// a saved session): boundary, interior and exterior constraints become items as they are;
+    /// a normal constraint becomes a boundary item and a normal handle at its offset point. The
+    /// session re-fits them with r³ and no smoothing, so a model fitted with λ > 0 or another
+    /// kernel comes back interpolating.
+    ///
+    /// ```
+    /// use rbf_core::{FitSettings, Model, shapes};
+    /// let constraints = shapes::sphere(20);
+    /// let fit = rbf_core::fit(&constraints, &FitSettings::default()).unwrap();
+    /// let model = Model { constraints, settings: FitSettings::default(), interpolant: fit.interpolant, report: None };
+    /// let s = rbf_sculpt::Session::from_model(&model).unwrap();
+    /// assert_eq!(s.items().len(), 40); // 20 boundary items and their 20 normal handles
+    /// assert!((s.interpolant().value(&[0.0, 0.0, 1.0])).abs() < 1e-9);
+    /// ```
+    pub fn from_model(model: &Model<3>) -> Result<Self, SculptError> {
+        let system = rbf_core::System::new(&model.constraints, &model.settings)?;
+        let mut items = Vec::with_capacity(system.rows());
+        // The item of each constraint's own row, for the handles of normal constraints.
+        let mut own_item = vec![0; model.constraints.len()];
+        for ((p, &value), source) in system
+            .points()
+            .iter()
+            .zip(system.values())
+            .zip(system.sources())
+        {
+            let c = source.constraint;
+            let item = if source.offset_point {
+                Item::Normal {
+                    boundary: own_item[c],
+                    tip: *p,
+                    value,
+                }
+            } else {
+                own_item[c] = items.len();
+                match model.constraints[c].kind {
+                    ConstraintKind::Interior => Item::Interior(*p, value),
+                    ConstraintKind::Exterior => Item::Exterior(*p, value),
+                    _ => Item::Boundary(*p),
+                }
+            };
+            items.push(item);
+        }
         Self::from_items(&items)
     }
 

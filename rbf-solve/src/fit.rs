@@ -80,7 +80,11 @@ pub fn solve<const D: usize>(
     settings: &FitSettings,
     options: &SolveOptions,
 ) -> Result<Fit<D>, FitError> {
+    // Every core where there are threads; one in a browser.
+    #[cfg(not(target_family = "wasm"))]
     let par = Par::rayon(0);
+    #[cfg(target_family = "wasm")]
+    let par = Par::Seq;
     let projected = |attempt| match Projected::new(system, attempt, par) {
         Ok(p) => Ok(Some(p)),
         Err(None) => Ok(None),

@@ -38,16 +38,29 @@ pub fn read_mesh_bytes(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> 
     })
 }
 
-/// Writes a mesh, choosing the format by extension: OBJ (text, with normals if present), PLY
-/// (binary little-endian, double precision) or STL (binary). The file is written to a temporary
-/// name and renamed, so an interrupted write leaves nothing half-written.
-pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), MeshError> {
-    let bytes = match extension(path).as_deref() {
+/// A mesh as the bytes of a file, the format by `path`'s extension as [`write_mesh`] chooses
+/// it: for downloads and other writes that are not to a file.
+///
+/// ```
+/// let mesh = rbf_mesh::TriMesh::icosphere(1);
+/// let stl = rbf_mesh::mesh_bytes("sphere.stl".as_ref(), &mesh).unwrap();
+/// assert_eq!(stl.len(), 84 + 50 * mesh.triangles().len()); // binary STL
+/// assert!(rbf_mesh::mesh_bytes("sphere.xyz".as_ref(), &mesh).is_err());
+/// ```
+pub fn mesh_bytes(path: &Path, mesh: &TriMesh) -> Result<Vec<u8>, MeshError> {
+    Ok(match extension(path).as_deref() {
         Some("obj") => obj::write(mesh),
         Some("ply") => ply::write(mesh),
         Some("stl") => stl::write(mesh),
         _ => return Err(MeshError::UnknownFormat { file: path.into() }),
-    };
+    })
+}
+
+/// Writes a mesh, choosing the format by extension: OBJ (text, with normals if present), PLY
+/// (binary little-endian, double precision) or STL (binary). The file is written to a temporary
+/// name and renamed, so an interrupted write leaves nothing half-written.
+pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), MeshError> {
+    let bytes = mesh_bytes(path, mesh)?;
     let io = |source| MeshError::Io {
         file: path.into(),
         source,

@@ -1,0 +1,229 @@
+//! The studio's engine in plain Rust (tested natively): a sculpting session, its surface as
+//! triangle buffers ready for WebGL, its handles, and the files it reads and writes.
+
+use std::path::Path;
+
+use rbf_core::{AnyModel, Model};
+use rbf_mesh::{
+    MeshError, PolygonizeSettings, Resolution, TriMesh, polygonize_continuation, surface_seeds,
+};
+use rbf_sculpt::{Answer, Item, SculptError, Session};
+
+/// Lattice cubes across the surface's box while a handle is dragged.
+pub const COARSE_CELLS: usize = 24;
+/// Lattice cubes across the surface's box when an edit is done.
+pub const FINE_CELLS: usize = 48;
+/// A dropped mesh gives at most this many vertices (two rows each) to its normal constraints:
+/// a dense solve in one browser thread stays within a few seconds.
+pub const MAX_MESH_VERTICES: usize = 700;
+
+/// Why the studio could not do what was asked; the page shows the message as it is, and the
+/// session is left as it was.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum StudioError {
+    /// A model file that does not read.
+    #[error("{file}: {source}")]
+    Model {
+        /// The file's name, as dropped or given.
+        file: String,
+        /// What is wrong in it.
+        source: rbf_core::FileError,
+    },
+    /// A 2D model: the studio sculpts surfaces.
+    #[error(
+        "{0} is a 2D model: the studio sculpts surfaces in 3D (curves are drawn with `rbf plot`)"
+    )]
+    TwoDimensional(String),
+    /// A mesh file that does not read or cannot be written.
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    /// A dropped mesh that could not be converted.
+    #[error(transparent)]
+    Convert(#[from] rbf_convert::ConvertError),
+    /// An edit the session refused.
+    #[error(transparent)]
+    Sculpt(#[from] SculptError),
+}
+
+/// The surface as the page draws it: flat `f32` buffers, three entries a vertex.
+#[derive(Clone, Debug, Default)]
+pub struct Surface {
+    /// Vertex positions, x y z per vertex.
+    pub positions: Vec<f32>,
+    /// Unit outward normals, one per vertex.
+    pub normals: Vec<f32>,
+    /// Three vertex indices per triangle, counter-clockwise seen from outside.
+    pub indices: Vec<u32>,
+    /// The mesh itself, for export.
+    pub mesh: Option<TriMesh>,
+}
+
+/// A handle as the page draws it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Handle {
+    /// The item's index in the session (stable across edits).
+    pub index: usize,
+    /// 0 boundary, 1 interior, 2 exterior, 3 normal handle.
+    pub kind: u8,
+    /// Where it is: the point, or a normal handle's tip.
+    pub position: [f64; 3],
+    /// For a normal handle, its boundary point (the other end of its stick); else `position`.
+    pub base: [f64; 3],
+}
+
+/// A session with its surface.
+///
+/// ```
+/// let mut studio = rbf_web::Studio::new().unwrap();
+/// assert_eq!(studio.handles().len(), 12); // the paper's start
+/// assert!(studio.surface().indices.len() > 300);
+/// let answer = studio.run("add 0 0 1.3").line(0.5);
+/// assert!(answer.starts_with("item 12 added"), "{answer}");
+/// assert_eq!(studio.handles().len(), 13);
+/// ```
+pub struct Studio {
+    session: Session,
+    surface: Surface,
+}
+
+impl Studio {
+    /// The paper's start (Turk & O'Brien 2002, §5): a blob through a tetrahedron's corners, in
+    /// a cube of exterior constraints.
+    pub fn new() -> Result<Self, StudioError> {
+        Self::with_session(Session::new()?)
+    }
+
+    /// A studio on a model file (the JSON of `rbf fit`, `rbf convert` or a saved session);
+    /// `name` names it in errors.
+    pub fn from_model_json(name: &str, text: &str) -> Result<Self, StudioError> {
+        let model = match AnyModel::from_json(text) {
+            Ok(AnyModel::Three(model)) => model,
+            Ok(AnyModel::Two(_)) => return Err(StudioError::TwoDimensional(name.into())),
+            Err(source) => {
+                return Err(StudioError::Model {
+                    file: name.into(),
+                    source,
+                });
+            }
+        };
+        Self::with_session(Session::from_model(&model)?)
+    }
+
+    /// A studio on a mesh file (OBJ, PLY or STL, by `name`'s extension), converted by normal
+    /// constraints at an evenly spread subset of at most [`MAX_MESH_VERTICES`] vertices
+    /// (Turk & O'Brien 2002, §4.3), as `rbf convert --method normals` thins large meshes.
+    pub fn from_mesh(name: &str, bytes: &[u8]) -> Result<Self, StudioError> {
+        let mesh = rbf_mesh::read_mesh_bytes(Path::new(name), bytes)?;
+        let settings = rbf_convert::NormalSettings {
+            max_vertices: MAX_MESH_VERTICES,
+            ..Default::default()
+        };
+        let (model, _) = rbf_convert::convert_normals(&mesh, &settings)?;
+        Self::with_session(Session::from_model(&model)?)
+    }
+
+    fn with_session(session: Session) -> Result<Self, StudioError> {
+        let mut studio = Self {
+            session,
+            surface: Surface::default(),
+        };
+        studio.remesh(FINE_CELLS)?;
+        Ok(studio)
+    }
+
+    /// The current surface.
+    pub fn surface(&self) -> &Surface {
+        &self.surface
+    }
+
+    /// The session's model, as `rbf sculpt` writes it.
+    pub fn model(&self) -> Model<3> {
+        self.session.model()
+    }
+
+    /// Re-polygonizes the surface at `cells` lattice cubes across its box, by continuation from
+    /// the boundary items. A surface that cannot be meshed (f does not change sign near the
+    /// items) leaves an empty surface, not an error: the next edit may bring it back.
+    pub fn remesh(&mut self, cells: usize) -> Result<(), StudioError> {
+        let model = self.session.model();
+        let settings = PolygonizeSettings {
+            resolution: Resolution::Cells(cells.clamp(4, 256)),
+            ..Default::default()
+        };
+        let view = model.interpolant.view();
+        let mesh = match polygonize_continuation(&view, &surface_seeds(&model), &settings) {
+            Ok((mesh, _)) => mesh,
+            Err(MeshError::Empty) => {
+                self.surface = Surface::default();
+                return Ok(());
+            }
+            Err(e) => return Err(e.into()),
+        };
+        let positions = mesh.positions();
+        let normals: Vec<f32> = positions
+            .iter()
+            .flat_map(|p| {
+                let g = view.gradient(p);
+                let n = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt().max(1e-300);
+                // f grows inward: the outward normal is −∇f.
+                g.map(|c| (-c / n) as f32)
+            })
+            .collect();
+        self.surface = Surface {
+            positions: positions.iter().flat_map(|p| p.map(|c| c as f32)).collect(),
+            normals,
+            indices: mesh.triangles().iter().flatten().copied().collect(),
+            mesh: Some(mesh),
+        };
+        Ok(())
+    }
+
+    /// Applies one line of the command language of `rbf sculpt -` (the page's clicks and
+    /// drags are sent as such lines too); [`Answer::line`] words the answer as the CLI does. The
+    /// surface is not re-meshed: call [`Studio::remesh`].
+    pub fn run(&mut self, line: &str) -> Answer {
+        self.session.run_command(line)
+    }
+
+    /// Where the ray from `origin` along `direction` first meets the surface.
+    pub fn hit(&self, origin: [f64; 3], direction: [f64; 3]) -> Result<[f64; 3], StudioError> {
+        Ok(self.session.pick(origin, direction)?)
+    }
+
+    /// Live items as handles.
+    pub fn handles(&self) -> Vec<Handle> {
+        let items = self.session.items();
+        items
+            .iter()
+            .enumerate()
+            .filter_map(|(index, item)| {
+                let (kind, position, base) = match (*item)? {
+                    Item::Boundary(p) => (0, p, p),
+                    Item::Interior(p, _) => (1, p, p),
+                    Item::Exterior(p, _) => (2, p, p),
+                    Item::Normal { boundary, tip, .. } => {
+                        let base = match items.get(boundary).copied().flatten() {
+                            Some(Item::Boundary(b)) => b,
+                            _ => tip,
+                        };
+                        (3, tip, base)
+                    }
+                };
+                Some(Handle {
+                    index,
+                    kind,
+                    position,
+                    base,
+                })
+            })
+            .collect()
+    }
+
+    /// The current surface as the bytes of a mesh file, the format by `name`'s extension (OBJ,
+    /// PLY, STL).
+    pub fn export(&self, name: &str) -> Result<Vec<u8>, StudioError> {
+        let mesh = self.surface.mesh.as_ref().ok_or(MeshError::Empty)?;
+        Ok(rbf_mesh::mesh_bytes(Path::new(name), mesh)?)
+    }
+}
