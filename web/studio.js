@@ -2,12 +2,12 @@
 // surface; this module draws it, turns clicks and drags into the command language of
 // `rbf sculpt -` (the same lines the command box takes), and offers files in and out.
 
-import init, { WebStudio } from './pkg/rbf_web.js';
+import init, { WebStudio, coarseCells, fineCells } from './pkg/rbf_web.js';
 import { Camera } from './camera.js';
 import { Renderer } from './renderer.js';
 
-const COARSE = 24;   // lattice cubes across while dragging
-const FINE = 48;     // and when an edit is done
+let COARSE;         // lattice cubes across while dragging (the engine's choice)
+let FINE;           // and when an edit is done
 const CLICK = 4;     // pixels a press may move and still be a click
 const GRAB = 12;     // pixels from a handle that grab it
 
@@ -64,9 +64,10 @@ function redraw() {
   });
 }
 
-/// The next frame drawn: what a caller awaits to know the surface it sees is the new one.
+/// The next frame drawn: what a caller awaits to know the surface it sees is the new one. The
+/// draw queued by `redraw` runs first in that frame, this callback right after it.
 function nextFrame() {
-  return new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+  return new Promise((resolve) => requestAnimationFrame(() => resolve()));
 }
 
 /// Applies a command line, re-meshes, redraws; resolves to the answer once drawn.
@@ -303,6 +304,8 @@ async function start() {
   try {
     renderer = new Renderer(canvas);
     await init();
+    COARSE = coarseCells();
+    FINE = fineCells();
     engine = new WebStudio();
     resize();
     frameSurface();

@@ -12,6 +12,18 @@ extern "C" {
     fn performance_now() -> f64;
 }
 
+/// Lattice cubes across the surface while a handle is dragged.
+#[wasm_bindgen(js_name = coarseCells)]
+pub fn coarse_cells() -> usize {
+    crate::COARSE_CELLS
+}
+
+/// Lattice cubes across the surface when an edit is done.
+#[wasm_bindgen(js_name = fineCells)]
+pub fn fine_cells() -> usize {
+    crate::FINE_CELLS
+}
+
 fn js_error(e: impl std::fmt::Display) -> JsError {
     JsError::new(&e.to_string())
 }

@@ -23,7 +23,7 @@
 mod bindings;
 mod studio;
 
-pub use bindings::WebStudio;
+pub use bindings::{WebStudio, coarse_cells, fine_cells};
 pub use studio::{
     COARSE_CELLS, FINE_CELLS, Handle, MAX_MESH_VERTICES, Studio, StudioError, Surface,
 };

@@ -10,9 +10,10 @@ use rbf_mesh::{
 use rbf_sculpt::{Answer, Item, SculptError, Session};
 
 /// Lattice cubes across the surface's box while a handle is dragged.
-pub const COARSE_CELLS: usize = 24;
-/// Lattice cubes across the surface's box when an edit is done.
-pub const FINE_CELLS: usize = 48;
+pub const COARSE_CELLS: usize = 20;
+/// Lattice cubes across the surface's box when an edit is done (normals come from ∇f, so the
+/// shading is smooth at this size).
+pub const FINE_CELLS: usize = 36;
 /// A dropped mesh gives at most this many vertices (two rows each) to its normal constraints:
 /// a dense solve in one browser thread stays within a few seconds.
 pub const MAX_MESH_VERTICES: usize = 700;
@@ -161,14 +162,11 @@ impl Studio {
             Err(e) => return Err(e.into()),
         };
         let positions = mesh.positions();
-        let normals: Vec<f32> = positions
+        // The polygonizer's normals, from ∇f at each vertex (outward).
+        let normals: Vec<f32> = mesh
+            .vertex_normals()
             .iter()
-            .flat_map(|p| {
-                let g = view.gradient(p);
-                let n = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt().max(1e-300);
-                // f grows inward: the outward normal is −∇f.
-                g.map(|c| (-c / n) as f32)
-            })
+            .flat_map(|n| rbf_core::vec3::normalize(*n).map(|c| c as f32))
             .collect();
         self.surface = Surface {
             positions: positions.iter().flat_map(|p| p.map(|c| c as f32)).collect(),

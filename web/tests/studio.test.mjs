@@ -4,38 +4,15 @@
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn, execFileSync } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { launch, startStudio, RBF } from './harness.mjs';
 
-const RBF = process.env.RBF ?? 'target/debug/rbf';
 const work = mkdtempSync(join(tmpdir(), 'rbf-studio-'));
 let server, browser, page, url;
 const problems = [];
-
-/// Starts `rbf studio` on a free port; resolves to its URL.
-export function startStudio(args = []) {
-  return new Promise((resolve, reject) => {
-    const child = spawn(RBF, ['studio', '--port', '0', ...args], { stdio: ['ignore', 'pipe', 'inherit'] });
-    child.stdout.on('data', (data) => {
-      const m = /http:\/\/127\.0\.0\.1:\d+\//.exec(String(data));
-      if (m) resolve({ child, url: m[0] });
-    });
-    child.on('exit', (code) => reject(new Error(`rbf studio exited with ${code}`)));
-  });
-}
-
-/// Debian's Chromium, headless, with software WebGL.
-export function launch() {
-  return chromium.launch({
-    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-    headless: true,
-    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'],
-  });
-}
 
 before(async () => {
   ({ child: server, url } = await startStudio());
