@@ -21,10 +21,13 @@ void main() {
   vec3 N = normalize(n), V = normalize(v);
   vec3 base = vec3(0.80, 0.42, 0.22);
   if (!gl_FrontFacing) { N = -N; base = vec3(0.45, 0.5, 0.7); }
+  // A key light above left, a dimmer fill from the right, and sky-like ambient.
   vec3 L = normalize(vec3(-0.4, 0.8, 0.6));
+  vec3 F = normalize(vec3(0.8, -0.1, 0.5));
   float diffuse = max(dot(N, L), 0.0);
+  float fill = max(dot(N, F), 0.0);
   float specular = pow(max(dot(N, normalize(L + V)), 0.0), 48.0);
-  colour = vec4(base * (0.22 + 0.78 * diffuse) + 0.35 * specular, 1.0);
+  colour = vec4(base * (0.28 + 0.62 * diffuse + 0.3 * fill) + 0.3 * specular, 1.0);
 }`;
 
 const MARK_VS = `#version 300 es

@@ -227,6 +227,7 @@ $('obj').onclick = () => exportMesh('obj');
 $('ply').onclick = () => exportMesh('ply');
 $('stl').onclick = () => exportMesh('stl');
 $('show-handles').onchange = redraw;
+$('frame').onclick = () => { frameSurface(); redraw(); };
 
 $('command-form').addEventListener('submit', async (event) => {
   event.preventDefault();
@@ -245,6 +246,9 @@ window.addEventListener('keydown', async (event) => {
     await remove();
   } else if (key === 'n') {
     await addNormal();
+  } else if (key === 'f') {
+    frameSurface();
+    redraw();
   }
 });
 

@@ -10,10 +10,12 @@ use rbf_mesh::{
 use rbf_sculpt::{Answer, Item, SculptError, Session};
 
 /// Lattice cubes across the surface's box while a handle is dragged.
-pub const COARSE_CELLS: usize = 20;
+pub const COARSE_CELLS: usize = 16;
 /// Lattice cubes across the surface's box when an edit is done (normals come from ∇f, so the
 /// shading is smooth at this size).
-pub const FINE_CELLS: usize = 36;
+pub const FINE_CELLS: usize = 28;
+/// Lattice cubes across the constraints' box in the pass that finds the surface's own box.
+pub const SCOUT_CELLS: usize = 12;
 /// A dropped mesh gives at most this many vertices (two rows each) to its normal constraints:
 /// a dense solve in one browser thread stays within a few seconds.
 pub const MAX_MESH_VERTICES: usize = 700;
@@ -143,24 +145,43 @@ impl Studio {
         self.session.model()
     }
 
-    /// Re-polygonizes the surface at `cells` lattice cubes across its box, by continuation from
-    /// the boundary items. A surface that cannot be meshed (f does not change sign near the
-    /// items) leaves an empty surface, not an error: the next edit may bring it back.
+    /// Re-polygonizes the surface at `cells` lattice cubes across the surface's own box, by
+    /// continuation from the boundary items: a first pass at [`SCOUT_CELLS`] across the
+    /// constraints' box (which exterior constraints far out make large) finds the surface's
+    /// box; the second meshes that box, grown by one scouting cube; should the surface reach
+    /// its faces, the constraints' box is meshed instead. A surface that cannot be meshed (f
+    /// does not change sign near the items) leaves an empty surface, not an error: the next
+    /// edit may bring it back.
     pub fn remesh(&mut self, cells: usize) -> Result<(), StudioError> {
         let model = self.session.model();
-        let settings = PolygonizeSettings {
-            resolution: Resolution::Cells(cells.clamp(4, 256)),
-            ..Default::default()
-        };
         let view = model.interpolant.view();
-        let mesh = match polygonize_continuation(&view, &surface_seeds(&model), &settings) {
-            Ok((mesh, _)) => mesh,
-            Err(MeshError::Empty) => {
-                self.surface = Surface::default();
-                return Ok(());
-            }
+        let seeds = surface_seeds(&model);
+        let polygonize = |resolution: usize, bounds: Option<([f64; 3], [f64; 3])>| {
+            let settings = PolygonizeSettings {
+                resolution: Resolution::Cells(resolution),
+                bounds,
+                ..Default::default()
+            };
+            polygonize_continuation(&view, &seeds, &settings)
+        };
+        let scout = match polygonize(SCOUT_CELLS, None) {
+            Ok((mesh, stats)) => Some((mesh.bounding_box(), stats.cell_size)),
+            Err(MeshError::Empty) => None,
             Err(e) => return Err(e.into()),
         };
+        let Some(((lo, hi), step)) = scout else {
+            self.surface = Surface::default();
+            return Ok(());
+        };
+        let grown = (lo.map(|v| v - step), hi.map(|v| v + step));
+        let cells = cells.clamp(4, 256);
+        let (mut mesh, stats) = polygonize(cells, Some(grown))?;
+        // A surface cut by the box comes within half a cube of a face: mesh the large box.
+        let (mlo, mhi) = mesh.bounding_box();
+        let near = 0.5 * stats.cell_size;
+        if (0..3).any(|d| mlo[d] - grown.0[d] < near || grown.1[d] - mhi[d] < near) {
+            mesh = polygonize(cells, None)?.0;
+        }
         let positions = mesh.positions();
         // The polygonizer's normals, from ∇f at each vertex (outward).
         let normals: Vec<f32> = mesh
