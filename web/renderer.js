@@ -1,5 +1,6 @@
-// WebGL2 drawing: the surface lit and shaded (two-sided, Blinn–Phong), the handles as round
-// points coloured by kind, and normal handles as sticks from their boundary point.
+// WebGL2 drawing: the surface lit and shaded (two-sided, Blinn–Phong), the floaters as small
+// discs on it (Turk & O'Brien 2002, §5), the handles as round points coloured by kind, and normal
+// handles as sticks from their boundary point.
 
 const SURFACE_VS = `#version 300 es
 layout(location = 0) in vec3 position;
@@ -16,10 +17,11 @@ void main() {
 const SURFACE_FS = `#version 300 es
 precision highp float;
 in vec3 n, v;
+uniform vec3 tint;
 out vec4 colour;
 void main() {
   vec3 N = normalize(n), V = normalize(v);
-  vec3 base = vec3(0.80, 0.42, 0.22);
+  vec3 base = tint;
   if (!gl_FrontFacing) { N = -N; base = vec3(0.45, 0.5, 0.7); }
   // A key light above left, a dimmer fill from the right, and sky-like ambient.
   vec3 L = normalize(vec3(-0.4, 0.8, 0.6));
@@ -79,6 +81,9 @@ export class Renderer {
     this.marks = program(gl, MARK_VS, MARK_FS);
     this.surfaceVao = gl.createVertexArray();
     this.buffers = { position: gl.createBuffer(), normal: gl.createBuffer(), index: gl.createBuffer() };
+    this.discVao = gl.createVertexArray();
+    this.discBuffers = { position: gl.createBuffer(), normal: gl.createBuffer() };
+    this.discVertices = 0;
     this.markVao = gl.createVertexArray();
     this.markBuffers = { position: gl.createBuffer(), colour: gl.createBuffer() };
     this.count = 0;
@@ -100,6 +105,41 @@ export class Renderer {
     gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, indices, gl.DYNAMIC_DRAW);
     gl.bindVertexArray(null);
     this.count = indices.length;
+  }
+
+  /// New floaters: seven numbers each (centre, outward normal, radius), drawn as discs of
+  /// eight triangles lifted a little off the surface.
+  setDiscs(floaters) {
+    const positions = [], normals = [];
+    const SIDES = 8;
+    for (let k = 0; k < floaters.length; k += 7) {
+      const n = [floaters[k + 3], floaters[k + 4], floaters[k + 5]], r = floaters[k + 6];
+      const c = [0, 1, 2].map((i) => floaters[k + i] + 0.08 * r * n[i]);
+      // Two unit vectors across the normal.
+      const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+      const u = [n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0]];
+      const lu = Math.hypot(...u);
+      const e1 = u.map((x) => x / lu);
+      const e2 = [n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]];
+      const rim = (j) => {
+        const t = 2 * Math.PI * j / SIDES;
+        return c.map((v, i) => v + r * (Math.cos(t) * e1[i] + Math.sin(t) * e2[i]));
+      };
+      for (let j = 0; j < SIDES; j++) {
+        positions.push(...c, ...rim(j), ...rim(j + 1));
+        normals.push(...n, ...n, ...n);
+      }
+    }
+    const gl = this.gl;
+    gl.bindVertexArray(this.discVao);
+    for (const [location, buffer, data] of [[0, this.discBuffers.position, positions], [1, this.discBuffers.normal, normals]]) {
+      gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(data), gl.DYNAMIC_DRAW);
+      gl.enableVertexAttribArray(location);
+      gl.vertexAttribPointer(location, 3, gl.FLOAT, false, 0, 0);
+    }
+    gl.bindVertexArray(null);
+    this.discVertices = positions.length / 3;
   }
 
   /// New handles: [{ index, kind, position, base }], the selected item's index.
@@ -139,8 +179,14 @@ export class Renderer {
       gl.useProgram(this.surface);
       gl.uniformMatrix4fv(gl.getUniformLocation(this.surface, 'view'), false, view);
       gl.uniformMatrix4fv(gl.getUniformLocation(this.surface, 'projection'), false, projection);
+      gl.uniform3f(gl.getUniformLocation(this.surface, 'tint'), 0.80, 0.42, 0.22);
       gl.bindVertexArray(this.surfaceVao);
       gl.drawElements(gl.TRIANGLES, this.count, gl.UNSIGNED_INT, 0);
+      if (this.discVertices > 0) {
+        gl.uniform3f(gl.getUniformLocation(this.surface, 'tint'), 0.95, 0.9, 0.55);
+        gl.bindVertexArray(this.discVao);
+        gl.drawArrays(gl.TRIANGLES, 0, this.discVertices);
+      }
     }
     if (showHandles && this.points > 0) {
       gl.useProgram(this.marks);

@@ -48,6 +48,7 @@ function readHandles() {
 
 function upload() {
   renderer.setSurface(engine.positions(), engine.normals(), engine.indices());
+  renderer.setDiscs(engine.floaters());
   readHandles();
   renderer.setHandles(handles, selected);
   const triangles = renderer.count / 3;
@@ -227,6 +228,10 @@ $('obj').onclick = () => exportMesh('obj');
 $('ply').onclick = () => exportMesh('ply');
 $('stl').onclick = () => exportMesh('stl');
 $('show-handles').onchange = redraw;
+$('show-floaters').onchange = () => {
+  engine.setFloaters($('show-floaters').checked);
+  upload();
+};
 $('frame').onclick = () => { frameSurface(); redraw(); };
 
 $('command-form').addEventListener('submit', async (event) => {
@@ -261,6 +266,7 @@ async function open(name, bytes) {
       : WebStudio.fromMesh(name, new Uint8Array(bytes));
     engine.free();
     engine = next;
+    engine.setFloaters($('show-floaters').checked);
     selected = null;
     frameSurface();
     upload();
@@ -288,6 +294,7 @@ window.studio = {
   command: (line) => command(line),
   open: (name, text) => open(name, new TextEncoder().encode(text)),
   state: () => ({
+    floaters: renderer.discVertices / 24,
     constraints: handles.length,
     triangles: renderer.count / 3,
     lastSolveMs: engine.lastSolveMs,

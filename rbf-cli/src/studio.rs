@@ -67,8 +67,15 @@ pub(crate) fn run(args: &StudioArgs, quiet: bool) -> Result<(), Failure> {
         }
         None => None,
     };
-    let listener = TcpListener::bind(("127.0.0.1", args.port))
-        .map_err(|e| Failure::new(BAD_INPUT, format!("127.0.0.1:{}: {e}", args.port)))?;
+    let listener = TcpListener::bind(("127.0.0.1", args.port)).map_err(|e| {
+        Failure::new(
+            BAD_INPUT,
+            format!(
+                "127.0.0.1:{}: {e}; choose another with --port N (0 takes any free port)",
+                args.port
+            ),
+        )
+    })?;
     let port = listener.local_addr().map(|a| a.port()).unwrap_or(args.port);
     println!("rbf studio at http://127.0.0.1:{port}/ (Ctrl+C stops it)");
     if !quiet && let Some(path) = &args.model {

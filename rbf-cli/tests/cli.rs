@@ -1276,3 +1276,91 @@ fn sculpt_takes_commands_at_a_prompt_and_from_text_files() {
         stderr(&o)
     );
 }
+
+/// `rbf studio` without a built page says what to run; a bad model is refused before serving;
+/// a built page (a stand-in here) is served on 127.0.0.1 with the model it was given.
+#[test]
+fn studio_explains_a_missing_build_refuses_bad_models_and_serves_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let web = dir.path().join("web");
+    std::fs::create_dir_all(web.join("pkg")).unwrap();
+    let web_arg = web.to_str().unwrap();
+    let o = rbf(&["studio", "--web", web_arg, "--port", "0"], None);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("run web/build.sh first"),
+        "{}",
+        stderr(&o)
+    );
+    write(&web.join("pkg"), "rbf_web.js", "export default 1;\n");
+    write(&web, "index.html", "<!doctype html><title>studio</title>\n");
+    let bad = write(dir.path(), "bad.json", "{\"format\": ");
+    let o = rbf(
+        &[
+            "studio",
+            bad.to_str().unwrap(),
+            "--web",
+            web_arg,
+            "--port",
+            "0",
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("bad.json"), "{}", stderr(&o));
+    // Serve a model: read the URL, then fetch the page, the config and the model.
+    let points: String = rbf_core::shapes::fibonacci_sphere(30)
+        .into_iter()
+        .map(|p| format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2]))
+        .collect();
+    let (model, o) = fit_file(dir.path(), "sphere.txt", &points, &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rbf"))
+        .args([
+            "studio",
+            model.to_str().unwrap(),
+            "--web",
+            web_arg,
+            "--port",
+            "0",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    std::io::BufRead::read_line(
+        &mut std::io::BufReader::new(child.stdout.take().unwrap()),
+        &mut line,
+    )
+    .unwrap();
+    let address = line
+        .split("http://")
+        .nth(1)
+        .and_then(|rest| rest.split('/').next())
+        .unwrap()
+        .to_string();
+    assert!(address.starts_with("127.0.0.1:"), "{line}");
+    let get = |path: &str| -> String {
+        use std::io::Read;
+        let mut s = std::net::TcpStream::connect(&address).unwrap();
+        write!(s, "GET {path} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+        let mut reply = String::new();
+        s.read_to_string(&mut reply).unwrap();
+        reply
+    };
+    let page = get("/");
+    assert!(
+        page.starts_with("HTTP/1.1 200") && page.contains("<title>studio</title>"),
+        "{page}"
+    );
+    assert!(get("/pkg/rbf_web.js").contains("Content-Type: text/javascript"));
+    assert!(get("/studio.json").contains(r#"{"model": "model.json"}"#));
+    let served = get("/model.json");
+    let body = served.split("\r\n\r\n").nth(1).unwrap();
+    assert_eq!(body, std::fs::read_to_string(&model).unwrap());
+    assert!(get("/../Cargo.toml").starts_with("HTTP/1.1 404"));
+    assert!(get("/nothing.js").starts_with("HTTP/1.1 404"));
+    child.kill().unwrap();
+    let _ = child.wait();
+}

@@ -115,7 +115,9 @@ impl Session {
     /// let model = Model { constraints, settings: FitSettings::default(), interpolant: fit.interpolant, report: None };
     /// let s = rbf_sculpt::Session::from_model(&model).unwrap();
     /// assert_eq!(s.items().len(), 40); // 20 boundary items and their 20 normal handles
-    /// assert!((s.interpolant().value(&[0.0, 0.0, 1.0])).abs() < 1e-9);
+    /// // Through the model's points, with the normal handles' values at the offset points.
+    /// assert!(s.interpolant().value(&model.constraints[3].position).abs() < 1e-9);
+    /// assert!(s.interpolant().value(&[0.0; 3]) > 0.0);
     /// ```
     pub fn from_model(model: &Model<3>) -> Result<Self, SculptError> {
         let system = rbf_core::System::new(&model.constraints, &model.settings)?;
@@ -181,6 +183,11 @@ impl Session {
     /// The floaters, once started.
     pub fn floaters(&self) -> Option<&Floaters> {
         self.floaters.as_ref()
+    }
+
+    /// Stops the floaters: later edits no longer move them (nor pay for it).
+    pub fn stop_floaters(&mut self) {
+        self.floaters = None;
     }
 
     /// Starts floaters on the surface (seeded at the boundary constraints); they follow every

@@ -122,6 +122,21 @@ impl WebStudio {
             .collect()
     }
 
+    /// Starts or stops the floaters.
+    #[wasm_bindgen(js_name = setFloaters)]
+    pub fn set_floaters(&mut self, on: bool) {
+        self.studio.set_floaters(on);
+    }
+
+    /// The floaters as discs, seven numbers each: centre x y z, outward normal x y z, radius.
+    pub fn floaters(&self) -> Vec<f64> {
+        self.studio
+            .floaters()
+            .iter()
+            .flat_map(|(p, n, r)| [p[0], p[1], p[2], n[0], n[1], n[2], *r])
+            .collect()
+    }
+
     /// Where a ray first meets the surface, or nothing.
     pub fn hit(&self, origin: &[f64], direction: &[f64]) -> Option<Vec<f64>> {
         let (Ok(o), Ok(d)) = (

@@ -210,6 +210,41 @@ impl Studio {
         Ok(self.session.pick(origin, direction)?)
     }
 
+    /// Starts or stops the floaters (Witkin & Heckbert particles that spread evenly over the
+    /// surface and follow every edit, as in Turk & O'Brien 2002, §5), spaced 1/20 of the
+    /// surface's diagonal.
+    pub fn set_floaters(&mut self, on: bool) {
+        if !on {
+            self.session.stop_floaters();
+            return;
+        }
+        if self.session.floaters().is_some() {
+            return;
+        }
+        let diagonal = self.surface.mesh.as_ref().map_or(2.0, |m| {
+            let (lo, hi) = m.bounding_box();
+            rbf_core::vec3::norm(rbf_core::vec3::sub(hi, lo))
+        });
+        self.session
+            .start_floaters(rbf_sculpt::FloaterSettings::for_size(diagonal));
+    }
+
+    /// The floaters as discs: centre, outward unit normal and radius (half their spacing), or
+    /// none when they are off.
+    pub fn floaters(&self) -> Vec<([f64; 3], [f64; 3], f64)> {
+        let Some(floaters) = self.session.floaters() else {
+            return Vec::new();
+        };
+        let f = self.session.interpolant().view();
+        let radius = 0.5 * floaters.settings().spacing;
+        floaters
+            .points()
+            .iter()
+            .zip(floaters.normals(&f))
+            .map(|(&p, n)| (p, n, radius))
+            .collect()
+    }
+
     /// Live items as handles.
     pub fn handles(&self) -> Vec<Handle> {
         let items = self.session.items();

@@ -167,3 +167,29 @@ fn meshes_open_as_normal_constraints_and_export_in_every_format() {
         .unwrap();
     assert!(e.to_string().contains("bad.obj"), "{e}");
 }
+
+#[test]
+fn floaters_lie_on_the_surface_and_follow_edits() {
+    let mut studio = Studio::new().unwrap();
+    assert!(studio.floaters().is_empty());
+    studio.set_floaters(true);
+    let discs = studio.floaters();
+    assert!(discs.len() > 30, "{} floaters", discs.len());
+    let f = studio.model().interpolant;
+    for (p, n, r) in &discs {
+        let g = f.gradient(p);
+        let slope = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+        assert!(f.value(p).abs() / slope < 1e-4, "a floater off the surface");
+        assert!((n[0] * n[0] + n[1] * n[1] + n[2] * n[2] - 1.0).abs() < 1e-9);
+        assert!(*r > 0.0);
+    }
+    assert!(matches!(studio.run("add 0 0 1.6"), Answer::Applied { .. }));
+    let f = studio.model().interpolant;
+    for (p, _, _) in studio.floaters() {
+        let g = f.gradient(&p);
+        let slope = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+        assert!(f.value(&p).abs() / slope < 1e-3, "a floater left behind");
+    }
+    studio.set_floaters(false);
+    assert!(studio.floaters().is_empty());
+}

@@ -203,6 +203,18 @@ test('rbf studio opens a model given on its command line', async () => {
   second.child.kill();
 });
 
+test('floaters spread over the surface, follow an edit, and go when turned off', async () => {
+  await page.check('#show-floaters');
+  await page.waitForFunction(() => window.studio.state().floaters > 20);
+  const before = (await state()).floaters;
+  await page.evaluate(() => window.studio.command('add 0 0 1.7'));
+  const after = (await state()).floaters;
+  assert.ok(after > 20, `${before} → ${after} floaters`);
+  await page.uncheck('#show-floaters');
+  await page.waitForFunction(() => window.studio.state().floaters === 0);
+  await page.evaluate(() => window.studio.command('undo'));
+});
+
 test('no console errors and no failed requests', () => {
   assert.deepEqual(problems, []);
 });
