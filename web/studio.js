@@ -148,7 +148,11 @@ canvas.addEventListener('pointerdown', (event) => {
   const { x, y } = pointer(event);
   const h = event.button === 0 && !event.shiftKey ? handleAt(x, y) : null;
   drag = { x, y, startX: x, startY: y, handle: h, moved: false, pan: event.shiftKey || event.button !== 0 };
-  if (h) { selected = h.index; renderer.setHandles(handles, selected); }
+  if (h) {
+    selected = h.index;
+    renderer.setHandles(handles, selected);
+    engine.beginGesture();
+  }
   canvas.setPointerCapture(event.pointerId);
 });
 
@@ -183,6 +187,7 @@ canvas.addEventListener('pointerup', async (event) => {
     engine.remesh(FINE);
     upload();
   }
+  if (d.handle) engine.endGesture();
 });
 
 canvas.addEventListener('wheel', (event) => {

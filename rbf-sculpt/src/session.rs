@@ -465,6 +465,29 @@ impl Session {
         })
     }
 
+    /// How many edits can be undone: a mark for [`Session::squash_history`].
+    pub fn history_len(&self) -> usize {
+        self.undo.len()
+    }
+
+    /// Makes every edit since the history had `mark` entries one step for undo: a handle
+    /// dragged through many positions is one edit to the person who dragged it.
+    ///
+    /// ```
+    /// let mut s = rbf_sculpt::Session::new().unwrap();
+    /// let mark = s.history_len();
+    /// for z in [1.2, 1.3, 1.4] {
+    ///     s.move_item(0, [0.6, 0.6, z]).unwrap();
+    /// }
+    /// s.squash_history(mark);
+    /// s.undo().unwrap(); // one undo: back where the drag started
+    /// assert_eq!(s.history_len(), mark);
+    /// assert_eq!(s.items()[0], Some(rbf_sculpt::Item::Boundary(rbf_core::shapes::tetrahedron()[0])));
+    /// ```
+    pub fn squash_history(&mut self, mark: usize) {
+        self.undo.truncate(mark + 1);
+    }
+
     /// Undoes the last edit: the previous interpolant, exactly.
     pub fn undo(&mut self) -> Result<(), SculptError> {
         let state = self.undo.pop().ok_or(SculptError::History("undo"))?;

@@ -34,6 +34,8 @@ pub struct WebStudio {
     studio: Studio,
     last_solve_ms: f64,
     last_mesh_ms: f64,
+    /// The history's length when the current drag began.
+    gesture: Option<usize>,
 }
 
 #[wasm_bindgen]
@@ -65,6 +67,7 @@ impl WebStudio {
             studio,
             last_solve_ms: 0.0,
             last_mesh_ms: 0.0,
+            gesture: None,
         }
     }
 
@@ -120,6 +123,20 @@ impl WebStudio {
                 [h.index as f64, f64::from(h.kind), x, y, z, bx, by, bz]
             })
             .collect()
+    }
+
+    /// A drag begins: its edits will undo as one.
+    #[wasm_bindgen(js_name = beginGesture)]
+    pub fn begin_gesture(&mut self) {
+        self.gesture = Some(self.studio.begin_gesture());
+    }
+
+    /// The drag ends.
+    #[wasm_bindgen(js_name = endGesture)]
+    pub fn end_gesture(&mut self) {
+        if let Some(mark) = self.gesture.take() {
+            self.studio.end_gesture(mark);
+        }
     }
 
     /// Starts or stops the floaters.

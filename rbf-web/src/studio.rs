@@ -205,6 +205,16 @@ impl Studio {
         self.session.run_command(line)
     }
 
+    /// Starts a gesture (a drag): its edits will undo as one.
+    pub fn begin_gesture(&mut self) -> usize {
+        self.session.history_len()
+    }
+
+    /// Ends a gesture begun at `mark`: its edits become one step of the history.
+    pub fn end_gesture(&mut self, mark: usize) {
+        self.session.squash_history(mark);
+    }
+
     /// Where the ray from `origin` along `direction` first meets the surface.
     pub fn hit(&self, origin: [f64; 3], direction: [f64; 3]) -> Result<[f64; 3], StudioError> {
         Ok(self.session.pick(origin, direction)?)

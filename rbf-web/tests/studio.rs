@@ -193,3 +193,22 @@ fn floaters_lie_on_the_surface_and_follow_edits() {
     studio.set_floaters(false);
     assert!(studio.floaters().is_empty());
 }
+
+#[test]
+fn a_drag_undoes_as_one_edit() {
+    let mut studio = Studio::new().unwrap();
+    let start = studio.model().to_json();
+    let mark = studio.begin_gesture();
+    for z in [1.0, 1.2, 1.4, 1.6] {
+        assert!(matches!(
+            studio.run(&format!("move 0 0.6 0.6 {z}")),
+            Answer::Applied { .. }
+        ));
+    }
+    studio.end_gesture(mark);
+    assert!(matches!(studio.run("undo"), Answer::Applied { .. }));
+    assert_eq!(studio.model().to_json(), start);
+    assert!(matches!(studio.run("undo"), Answer::Refused(_)));
+    assert!(matches!(studio.run("redo"), Answer::Applied { .. }));
+    assert_eq!(studio.handles()[0].position, [0.6, 0.6, 1.6]);
+}
