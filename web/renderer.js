@@ -58,6 +58,17 @@ void main() {
 export const KIND_COLOURS = [[0.15, 0.35, 0.85], [0.1, 0.6, 0.2], [0.85, 0.15, 0.15], [0.95, 0.75, 0.1]];
 const SELECTED = [1, 1, 1];
 
+/// Fills vertex array `vao` with three-float attributes: [location, buffer, data] each.
+function attributes(gl, vao, list) {
+  gl.bindVertexArray(vao);
+  for (const [location, buffer, data] of list) {
+    gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+    gl.bufferData(gl.ARRAY_BUFFER, data, gl.DYNAMIC_DRAW);
+    gl.enableVertexAttribArray(location);
+    gl.vertexAttribPointer(location, 3, gl.FLOAT, false, 0, 0);
+  }
+}
+
 function program(gl, vs, fs) {
   const p = gl.createProgram();
   for (const [type, source] of [[gl.VERTEX_SHADER, vs], [gl.FRAGMENT_SHADER, fs]]) {
@@ -94,13 +105,7 @@ export class Renderer {
   /// New surface buffers: positions and normals (3 floats a vertex), indices (3 a triangle).
   setSurface(positions, normals, indices) {
     const gl = this.gl;
-    gl.bindVertexArray(this.surfaceVao);
-    for (const [location, buffer, data] of [[0, this.buffers.position, positions], [1, this.buffers.normal, normals]]) {
-      gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
-      gl.bufferData(gl.ARRAY_BUFFER, data, gl.DYNAMIC_DRAW);
-      gl.enableVertexAttribArray(location);
-      gl.vertexAttribPointer(location, 3, gl.FLOAT, false, 0, 0);
-    }
+    attributes(gl, this.surfaceVao, [[0, this.buffers.position, positions], [1, this.buffers.normal, normals]]);
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.buffers.index);
     gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, indices, gl.DYNAMIC_DRAW);
     gl.bindVertexArray(null);
@@ -131,13 +136,7 @@ export class Renderer {
       }
     }
     const gl = this.gl;
-    gl.bindVertexArray(this.discVao);
-    for (const [location, buffer, data] of [[0, this.discBuffers.position, positions], [1, this.discBuffers.normal, normals]]) {
-      gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
-      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(data), gl.DYNAMIC_DRAW);
-      gl.enableVertexAttribArray(location);
-      gl.vertexAttribPointer(location, 3, gl.FLOAT, false, 0, 0);
-    }
+    attributes(gl, this.discVao, [[0, this.discBuffers.position, new Float32Array(positions)], [1, this.discBuffers.normal, new Float32Array(normals)]]);
     gl.bindVertexArray(null);
     this.discVertices = positions.length / 3;
   }
@@ -155,13 +154,7 @@ export class Renderer {
       colours.push(...KIND_COLOURS[3], ...KIND_COLOURS[3]);
     }
     const gl = this.gl;
-    gl.bindVertexArray(this.markVao);
-    for (const [location, buffer, data] of [[0, this.markBuffers.position, points], [1, this.markBuffers.colour, colours]]) {
-      gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
-      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(data), gl.DYNAMIC_DRAW);
-      gl.enableVertexAttribArray(location);
-      gl.vertexAttribPointer(location, 3, gl.FLOAT, false, 0, 0);
-    }
+    attributes(gl, this.markVao, [[0, this.markBuffers.position, new Float32Array(points)], [1, this.markBuffers.colour, new Float32Array(colours)]]);
     gl.bindVertexArray(null);
     this.points = handles.length;
     this.lines = sticks.length * 2;
