@@ -21,7 +21,9 @@ export class Camera {
   frame(lo, hi) {
     this.target = lo.map((v, i) => (v + hi[i]) / 2);
     const radius = Math.hypot(...sub(hi, lo)) / 2 || 1;
-    this.distance = radius / Math.sin(this.fov / 2) * 1.05;
+    // The narrower of the vertical and horizontal fields of view must hold the box.
+    const horizontal = 2 * Math.atan(Math.tan(this.fov / 2) * this.width / this.height);
+    this.distance = radius / Math.sin(Math.min(this.fov, horizontal) / 2) * 1.05;
   }
 
   eye() {

@@ -158,6 +158,7 @@ canvas.addEventListener('pointerdown', (event) => {
 
 canvas.addEventListener('pointermove', (event) => {
   if (!drag) return;
+  if (event.buttons === 0) { finishDrag(); return; }  // the release was lost
   const { x, y } = pointer(event);
   if (Math.hypot(x - drag.startX, y - drag.startY) > CLICK) drag.moved = true;
   if (!drag.moved) return;
@@ -175,20 +176,34 @@ canvas.addEventListener('pointermove', (event) => {
   drag.x = x; drag.y = y;
 });
 
-canvas.addEventListener('pointerup', async (event) => {
-  if (!drag) return;
+/// Ends a drag: a moved handle's surface is re-meshed finely and its moves become one edit.
+function finishDrag() {
   const d = drag;
   drag = null;
-  const { x, y } = pointer(event);
-  if (!d.moved && event.button === 0) {
-    await click(x, y);
-  } else if (d.handle) {
-    log(`moved item ${d.handle.index}`);
-    engine.remesh(FINE);
-    upload();
+  if (!d?.handle) return;
+  try {
+    if (d.moved) {
+      log(`moved item ${d.handle.index}`);
+      engine.remesh(FINE);
+      upload();
+    }
+  } catch (e) {
+    log(`${e.message}`, true);
+  } finally {
+    engine.endGesture();
   }
-  if (d.handle) engine.endGesture();
+}
+
+canvas.addEventListener('pointerup', async (event) => {
+  if (!drag) return;
+  const { x, y } = pointer(event);
+  const isClick = !drag.moved && event.button === 0;
+  finishDrag();
+  if (isClick) await click(x, y);
 });
+canvas.addEventListener('pointercancel', finishDrag);
+canvas.addEventListener('lostpointercapture', () => { if (drag) finishDrag(); });
+canvas.addEventListener('contextmenu', (event) => event.preventDefault());
 
 canvas.addEventListener('wheel', (event) => {
   event.preventDefault();
@@ -213,8 +228,8 @@ function exportMesh(extension) {
   }
 }
 
-async function undo() { await command('undo'); }
-async function redo() { await command('redo'); }
+async function undo() { if (!drag) await command('undo'); }
+async function redo() { if (!drag) await command('redo'); }
 async function addNormal() {
   if (selected === null) { log('select a boundary handle first', true); return; }
   await command(`normal ${selected}`);
@@ -247,7 +262,8 @@ $('command-form').addEventListener('submit', async (event) => {
 });
 
 window.addEventListener('keydown', async (event) => {
-  if (event.target === $('command')) return;
+  // Not in the command box, and not while a handle is held: its drag is one edit.
+  if (event.target === $('command') || drag) return;
   const key = event.key.toLowerCase();
   if ((event.ctrlKey || event.metaKey) && key === 'z') {
     event.preventDefault();
@@ -265,6 +281,7 @@ window.addEventListener('keydown', async (event) => {
 /// Replaces the session by one read from a dropped or served file; a bad file leaves the
 /// session as it was and says why.
 async function open(name, bytes) {
+  if (drag) finishDrag();
   try {
     const next = name.toLowerCase().endsWith('.json')
       ? WebStudio.fromModel(name, new TextDecoder().decode(bytes))

@@ -1,9 +1,9 @@
 //! `rbf studio`: serves the studio page (`web/`, built by `web/build.sh`) on 127.0.0.1, and a
 //! model to open with it.
 
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{TcpListener, TcpStream};
-use std::path::{Path, PathBuf};
+use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
 use clap::Args;
@@ -40,7 +40,12 @@ pub(crate) struct StudioArgs {
 struct Site {
     root: PathBuf,
     model: Option<Vec<u8>>,
+    /// The port served, for checking the `Host` header.
+    port: u16,
 }
+
+/// Bytes a request's line and headers may take.
+const MAX_REQUEST: u64 = 16 << 10;
 
 pub(crate) fn run(args: &StudioArgs, quiet: bool) -> Result<(), Failure> {
     let root = args
@@ -82,7 +87,7 @@ pub(crate) fn run(args: &StudioArgs, quiet: bool) -> Result<(), Failure> {
         eprintln!("opening {}", path.display());
     }
     let _ = std::io::stdout().flush();
-    let site = Arc::new(Site { root, model });
+    let site = Arc::new(Site { root, model, port });
     for stream in listener.incoming().flatten() {
         let site = Arc::clone(&site);
         std::thread::spawn(move || {
@@ -95,12 +100,27 @@ pub(crate) fn run(args: &StudioArgs, quiet: bool) -> Result<(), Failure> {
 /// Answers one request: GET of a file under the page's folder, `studio.json` (what to open)
 /// and `model.json` (the model given on the command line).
 fn serve(stream: TcpStream, site: &Site) -> std::io::Result<()> {
-    let mut reader = BufReader::new(stream.try_clone()?);
+    // A client that stalls or sends without end is dropped.
+    stream.set_read_timeout(Some(std::time::Duration::from_secs(10)))?;
+    let mut reader = BufReader::new(Read::take(stream.try_clone()?, MAX_REQUEST));
     let mut request = String::new();
     reader.read_line(&mut request)?;
-    // Skip the headers.
+    // The headers: only `Host` matters, which must name this server (a page elsewhere that
+    // points a name of its own at 127.0.0.1 gets nothing).
+    let mut host_ok = false;
     let mut line = String::new();
     while reader.read_line(&mut line)? > 2 {
+        if let Some((name, value)) = line.split_once(':')
+            && name.trim().eq_ignore_ascii_case("host")
+        {
+            let value = value.trim();
+            host_ok = [
+                format!("127.0.0.1:{}", site.port),
+                format!("localhost:{}", site.port),
+            ]
+            .iter()
+            .any(|h| h == value);
+        }
         line.clear();
     }
     let mut words = request.split_whitespace();
@@ -118,6 +138,9 @@ fn serve(stream: TcpStream, site: &Site) -> std::io::Result<()> {
     if method != "GET" {
         return reply("405 Method Not Allowed", "text/plain", b"GET only\n");
     }
+    if !host_ok {
+        return reply("403 Forbidden", "text/plain", b"ask for 127.0.0.1\n");
+    }
     match path {
         "/studio.json" => {
             let config: &[u8] = if site.model.is_some() {
@@ -132,17 +155,20 @@ fn serve(stream: TcpStream, site: &Site) -> std::io::Result<()> {
             None => reply("404 Not Found", "text/plain", b"no model was given\n"),
         },
         _ => {
-            let relative = if path == "/" {
-                "index.html"
-            } else {
-                &path[1..]
+            let relative = match path.strip_prefix('/').unwrap_or(path) {
+                "" => "index.html",
+                name => name,
             };
-            let safe = !relative
-                .split('/')
-                .any(|part| part == ".." || part.is_empty())
-                && !relative.contains('\\');
-            match std::fs::read(site.root.join(relative)) {
-                Ok(body) if safe => reply("200 OK", content_type(relative), &body),
+            // Only plain names below the page's folder: no `..`, no root, no drive, no
+            // backslash; checked before anything is opened.
+            let safe = !relative.contains(['\\', ':'])
+                && !relative.split('/').any(str::is_empty)
+                && Path::new(relative)
+                    .components()
+                    .all(|c| matches!(c, Component::Normal(_)));
+            let file = site.root.join(relative);
+            match safe.then(|| std::fs::read(&file)) {
+                Some(Ok(body)) => reply("200 OK", content_type(relative), &body),
                 _ => reply("404 Not Found", "text/plain", b"not found\n"),
             }
         }

@@ -1315,22 +1315,26 @@ fn studio_explains_a_missing_build_refuses_bad_models_and_serves_files() {
         .collect();
     let (model, o) = fit_file(dir.path(), "sphere.txt", &points, &[]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rbf"))
-        .args([
-            "studio",
-            model.to_str().unwrap(),
-            "--web",
-            web_arg,
-            "--port",
-            "0",
-        ])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
+    /// Stops the server however the test ends.
+    struct Server(std::process::Child);
+    impl Drop for Server {
+        fn drop(&mut self) {
+            let _ = self.0.kill();
+            let _ = self.0.wait();
+        }
+    }
+    let model_arg = model.to_str().unwrap();
+    let mut child = Server(
+        Command::new(env!("CARGO_BIN_EXE_rbf"))
+            .args(["studio", model_arg, "--web", web_arg, "--port", "0"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap(),
+    );
     let mut line = String::new();
     std::io::BufRead::read_line(
-        &mut std::io::BufReader::new(child.stdout.take().unwrap()),
+        &mut std::io::BufReader::new(child.0.stdout.take().unwrap()),
         &mut line,
     )
     .unwrap();
@@ -1341,14 +1345,15 @@ fn studio_explains_a_missing_build_refuses_bad_models_and_serves_files() {
         .unwrap()
         .to_string();
     assert!(address.starts_with("127.0.0.1:"), "{line}");
-    let get = |path: &str| -> String {
+    let request = |path: &str, host: &str| -> String {
         use std::io::Read;
         let mut s = std::net::TcpStream::connect(&address).unwrap();
-        write!(s, "GET {path} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+        write!(s, "GET {path} HTTP/1.1\r\nHost: {host}\r\n\r\n").unwrap();
         let mut reply = String::new();
         s.read_to_string(&mut reply).unwrap();
         reply
     };
+    let get = |path: &str| request(path, &address);
     let page = get("/");
     assert!(
         page.starts_with("HTTP/1.1 200") && page.contains("<title>studio</title>"),
@@ -1359,8 +1364,15 @@ fn studio_explains_a_missing_build_refuses_bad_models_and_serves_files() {
     let served = get("/model.json");
     let body = served.split("\r\n\r\n").nth(1).unwrap();
     assert_eq!(body, std::fs::read_to_string(&model).unwrap());
-    assert!(get("/../Cargo.toml").starts_with("HTTP/1.1 404"));
+    // Nothing outside the page's folder, though these files exist: the model written beside
+    // web/, and the system's own files.
+    assert!(dir.path().join("m.json").is_file());
+    for escape in ["/../m.json", "//etc/hostname", "/pkg/../../m.json", "/C:/x"] {
+        assert!(get(escape).starts_with("HTTP/1.1 404"), "{escape}");
+    }
     assert!(get("/nothing.js").starts_with("HTTP/1.1 404"));
-    child.kill().unwrap();
-    let _ = child.wait();
+    assert!(get("?x").starts_with("HTTP/1.1 200"));
+    // A page elsewhere that points its own name at 127.0.0.1 is refused.
+    assert!(request("/model.json", "evil.example:80").starts_with("HTTP/1.1 403"));
+    drop(child);
 }

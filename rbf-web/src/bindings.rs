@@ -77,13 +77,16 @@ impl WebStudio {
         let start = performance_now();
         let answer = self.studio.run(line);
         self.last_solve_ms = performance_now() - start;
-        if matches!(answer, rbf_sculpt::Answer::Applied { .. })
-            && let Err(e) = self.remesh(cells)
-        {
-            return format!(
-                "{}; the surface could not be meshed: {e:?}",
-                answer.line(self.last_solve_ms)
-            );
+        if matches!(answer, rbf_sculpt::Answer::Applied { .. }) {
+            let start = performance_now();
+            let meshed = self.studio.remesh(cells);
+            self.last_mesh_ms = performance_now() - start;
+            if let Err(e) = meshed {
+                return format!(
+                    "{}; the surface could not be meshed: {e}",
+                    answer.line(self.last_solve_ms)
+                );
+            }
         }
         answer.line(self.last_solve_ms)
     }

@@ -25,5 +25,6 @@ mod studio;
 
 pub use bindings::{WebStudio, coarse_cells, fine_cells};
 pub use studio::{
-    COARSE_CELLS, FINE_CELLS, Handle, MAX_MESH_VERTICES, SCOUT_CELLS, Studio, StudioError, Surface,
+    COARSE_CELLS, FINE_CELLS, Handle, MAX_MESH_VERTICES, MAX_MODEL_ROWS, SCOUT_CELLS, Studio,
+    StudioError, Surface,
 };

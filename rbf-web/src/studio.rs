@@ -16,6 +16,9 @@ pub const COARSE_CELLS: usize = 16;
 pub const FINE_CELLS: usize = 28;
 /// Lattice cubes across the constraints' box in the pass that finds the surface's own box.
 pub const SCOUT_CELLS: usize = 12;
+/// Rows a model may bring: the session factors them densely in one browser thread (about 3 s
+/// and 50 MB at this size; each undo refactors).
+pub const MAX_MODEL_ROWS: usize = 2500;
 /// A dropped mesh gives at most this many vertices (two rows each) to its normal constraints:
 /// a dense solve in one browser thread stays within a few seconds.
 pub const MAX_MESH_VERTICES: usize = 700;
@@ -32,6 +35,18 @@ pub enum StudioError {
         file: String,
         /// What is wrong in it.
         source: rbf_core::FileError,
+    },
+    /// A model too large to edit at interactive speed in a browser.
+    #[error(
+        "{file} has {rows} rows (normal constraints count twice): the studio edits up to {limit}; fit fewer points, or convert the mesh with `rbf convert --method normals --max-constraints 1200`"
+    )]
+    TooLarge {
+        /// The file's name.
+        file: String,
+        /// Rows of its system.
+        rows: usize,
+        /// [`MAX_MODEL_ROWS`].
+        limit: usize,
     },
     /// A 2D model: the studio sculpts surfaces.
     #[error(
@@ -110,6 +125,14 @@ impl Studio {
                 });
             }
         };
+        let rows: usize = model.constraints.iter().map(|c| c.rows()).sum();
+        if rows > MAX_MODEL_ROWS {
+            return Err(StudioError::TooLarge {
+                file: name.into(),
+                rows,
+                limit: MAX_MODEL_ROWS,
+            });
+        }
         Self::with_session(Session::from_model(&model)?)
     }
 

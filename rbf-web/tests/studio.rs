@@ -141,8 +141,44 @@ fn models_round_trip_and_bad_files_are_named() {
     let e = Studio::from_model_json("broken.json", "{").err().unwrap();
     assert!(matches!(e, StudioError::Model { .. }));
     assert!(e.to_string().starts_with("broken.json: "), "{e}");
-    let curve = r#"{"format": "rbf-model", "version": 1, "dim": 2}"#;
-    assert!(Studio::from_model_json("c.json", curve).is_err());
+    // A real 2D model: refused for its dimension.
+    let constraints = vec![
+        rbf_core::Constraint::boundary([1.0, 0.0]),
+        rbf_core::Constraint::boundary([0.0, 1.0]),
+        rbf_core::Constraint::boundary([-1.0, 0.0]),
+        rbf_core::Constraint::interior([0.0, 0.0], 1.0),
+    ];
+    let settings = rbf_core::FitSettings::default();
+    let fit = rbf_core::fit(&constraints, &settings).unwrap();
+    let curve = rbf_core::Model {
+        constraints,
+        settings,
+        interpolant: fit.interpolant,
+        report: None,
+    };
+    let e = Studio::from_model_json("curve.json", &curve.to_json())
+        .err()
+        .unwrap();
+    assert!(matches!(e, StudioError::TwoDimensional(_)), "{e}");
+    // A model too large to edit in a browser: refused before it is factored. (Its weights are
+    // not a fit's; the file reader checks only that its centres are its constraints' points.)
+    let big = rbf_core::shapes::sphere(1300);
+    let system = rbf_core::System::new(&big, &settings).unwrap();
+    let centres = system.points().to_vec();
+    let weights = vec![0.0; centres.len()];
+    let interpolant =
+        rbf_core::Interpolant::new(rbf_core::Kernel::Cubic, centres, weights, 1.0, [0.0; 3])
+            .unwrap();
+    let model = rbf_core::Model {
+        constraints: big,
+        settings,
+        interpolant,
+        report: None,
+    };
+    let e = Studio::from_model_json("big.json", &model.to_json())
+        .err()
+        .unwrap();
+    assert!(matches!(e, StudioError::TooLarge { rows: 2600, .. }), "{e}");
 }
 
 #[test]
