@@ -52,7 +52,8 @@ pub enum SculptError {
 pub struct ParseError {
     /// 1-based line of the text (1 for a single command).
     pub line: usize,
-    /// 1-based column, in characters, where the word at fault starts.
+    /// 1-based column where the word at fault starts, in characters (in a JSON script, serde_json's
+    /// column, which counts bytes).
     pub column: usize,
     /// What is wrong there.
     pub problem: ParseProblem,
