@@ -24,6 +24,13 @@ pub fn ply(data: &[u8]) {
     mesh("ply", data);
 }
 
+/// Point clouds: the `.npy` reader and the PLY reader's normals.
+pub fn point_cloud(data: &[u8]) {
+    let _ = rbf_mesh::read_npy_matrix("cloud.npy".as_ref(), data);
+    let _ = rbf_mesh::read_point_cloud_bytes("cloud.npy".as_ref(), data);
+    let _ = rbf_mesh::read_point_cloud_bytes("cloud.ply".as_ref(), data);
+}
+
 /// STL reader (ASCII and binary) and mesh check.
 pub fn stl(data: &[u8]) {
     mesh("stl", data);

@@ -16,10 +16,11 @@ fn replay(target: &str, run: fn(&[u8])) -> usize {
 
 #[test]
 fn every_corpus_replays_without_a_panic() {
-    let targets: [(&str, fn(&[u8])); 10] = [
+    let targets: [(&str, fn(&[u8])); 11] = [
         ("obj", rbf_fuzz::obj),
         ("ply", rbf_fuzz::ply),
         ("stl", rbf_fuzz::stl),
+        ("point_cloud", rbf_fuzz::point_cloud),
         ("constraints_text", rbf_fuzz::constraints_text),
         ("constraints_json", rbf_fuzz::constraints_json),
         ("model_json", rbf_fuzz::model_json),

@@ -23,6 +23,10 @@ Input formats:
            {\"kind\": \"exterior\", \"position\": [3, 3, 3], \"value\": -1},
            {\"kind\": \"normal\", \"position\": [1, 0, 0], \"normal\": [1, 0, 0]}]}
   (see the README for every field).
+  Point clouds, 3D, by extension:
+    .ply   vertices with x y z nx ny nz (ASCII or binary; faces ignored): oriented points
+    .npy   N x 6 (x y z nx ny nz) oriented points, or N x 4 (x y z value); float64 or float32
+  A cloud without normals is refused: estimate them first (Open3D, MeshLab).
 
 Examples:
   rbf fit points.txt -o model.json
@@ -34,8 +38,8 @@ Examples:
 
 #[derive(Args, Debug)]
 pub(crate) struct FitArgs {
-    /// Constraint file (JSON or text), or a model file whose constraints are solved again
-    /// (with its settings, unless overridden); `-` reads stdin.
+    /// Constraint file (JSON or text), a point cloud (.ply with normals, .npy), or a model file
+    /// whose constraints are solved again (with its settings, unless overridden); `-` reads stdin.
     input: PathBuf,
     /// Model file to write (JSON).
     #[arg(short, long, value_name = "MODEL.json")]
@@ -100,14 +104,26 @@ enum SolverArg {
 
 pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Failure> {
     let source = args.input.display().to_string();
-    let text = read_text(&args.input)?;
+    let cloud = read_cloud(&args.input, &source)?;
+    let text = match cloud {
+        Some(_) => String::new(),
+        None => read_text(&args.input)?,
+    };
     let mut settings = FitSettings::default();
     if let Some(k) = args.kernel {
         settings.kernel = Some(k.into());
     }
     let json = text.trim_start().starts_with('{');
     let model = json && text.contains("\"format\"");
-    let (dim, source_kind) = if model {
+    let (dim, source_kind) = if let Some(constraints) = cloud {
+        if args.dim == Some(2) {
+            return Err(Failure::new(
+                USAGE,
+                format!("--dim 2 contradicts {source}, a point cloud in 3D"),
+            ));
+        }
+        (3, Source::Cloud(constraints))
+    } else if model {
         // A model file: re-solve its constraints, with its settings unless overridden.
         let model = AnyModel::from_json(&text).map_err(|e| Failure::file(&source, &e))?;
         let (dim, model_settings) = match &model {
@@ -198,20 +214,87 @@ enum Source {
     Constraints(ConstraintFile),
     /// A model file, whose constraints are solved again.
     Model(AnyModel),
+    /// A point cloud (PLY, `.npy`), read into constraints.
+    Cloud(Vec<Constraint<3>>),
+}
+
+/// Constraints from a point cloud file (`.ply` with normals, `.npy` of N × 4 values or N × 6
+/// oriented points), or `None` for other files. A cloud without normals is an error that says
+/// what is missing.
+fn read_cloud(path: &std::path::Path, source: &str) -> Result<Option<Vec<Constraint<3>>>, Failure> {
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let no_normals = || {
+        Failure::new(
+            BAD_INPUT,
+            format!(
+                "{source} has points but no normals: a surface through points needs each point's outward normal (PLY vertex properties nx ny nz, or .npy columns 4-6); estimate them first (Open3D's estimate_normals, MeshLab's Compute Normals for Point Sets), or give values: x y z value"
+            ),
+        )
+    };
+    match extension.as_deref() {
+        Some("ply") => {
+            let cloud = rbf_mesh::read_point_cloud(path).map_err(|e| Failure::mesh(&e))?;
+            let normals = cloud.normals.ok_or_else(no_normals)?;
+            Ok(Some(
+                cloud
+                    .positions
+                    .into_iter()
+                    .zip(normals)
+                    .map(|(p, n)| Constraint::normal(p, n))
+                    .collect(),
+            ))
+        }
+        Some("npy") => {
+            let bytes = std::fs::read(path)
+                .map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
+            let m = rbf_mesh::read_npy_matrix(path, &bytes).map_err(|e| Failure::mesh(&e))?;
+            let at = |i: usize, d: usize| m.data[i * m.cols + d];
+            let point = |i: usize| [at(i, 0), at(i, 1), at(i, 2)];
+            let constraints = match m.cols {
+                4 => (0..m.rows)
+                    .map(|i| match at(i, 3) {
+                        v if v > 0.0 => Constraint::interior(point(i), v),
+                        v if v < 0.0 => Constraint::exterior(point(i), v),
+                        // 0, or NaN: the constraint checks name a NaN by its index.
+                        v => Constraint::boundary(point(i)).with_value(v),
+                    })
+                    .collect(),
+                6 => (0..m.rows)
+                    .map(|i| Constraint::normal(point(i), [at(i, 3), at(i, 4), at(i, 5)]))
+                    .collect(),
+                3 => return Err(no_normals()),
+                cols => {
+                    return Err(Failure::new(
+                        BAD_INPUT,
+                        format!(
+                            "{source}: an array of {cols} columns: give N × 4 (x y z value) or N × 6 (x y z nx ny nz)"
+                        ),
+                    ));
+                }
+            };
+            Ok(Some(constraints))
+        }
+        _ => Ok(None),
+    }
+}
+
+/// A constraint of dimension A as one of dimension D (the caller checked that A is D).
+fn cast<const A: usize, const D: usize>(c: &Constraint<A>) -> Constraint<D> {
+    Constraint {
+        kind: c.kind,
+        position: core::array::from_fn(|d| c.position[d]),
+        value: c.value,
+        normal: core::array::from_fn(|d| c.normal[d]),
+        offset: c.offset,
+        smoothing: c.smoothing,
+    }
 }
 
 /// A model's constraints in dimension D (the caller picked D from the model).
 fn model_constraints<const D: usize>(model: &AnyModel) -> Vec<Constraint<D>> {
-    fn cast<const A: usize, const D: usize>(c: &Constraint<A>) -> Constraint<D> {
-        Constraint {
-            kind: c.kind,
-            position: core::array::from_fn(|d| c.position[d]),
-            value: c.value,
-            normal: core::array::from_fn(|d| c.normal[d]),
-            offset: c.offset,
-            smoothing: c.smoothing,
-        }
-    }
     match model {
         AnyModel::Two(m) => m.constraints.iter().map(cast).collect(),
         AnyModel::Three(m) => m.constraints.iter().map(cast).collect(),
@@ -237,6 +320,7 @@ impl Job<'_> {
                 .constraints()
                 .map_err(|e| Failure::file(self.source, &e))?,
             Source::Model(m) => model_constraints(m),
+            Source::Cloud(cs) => cs.iter().map(cast).collect(),
             Source::Text => rbf_core::parse_constraints(self.text)
                 .map_err(|e| Failure::new(BAD_INPUT, format!("{}: {e}", self.source)))?,
         };

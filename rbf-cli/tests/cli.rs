@@ -1376,3 +1376,83 @@ fn studio_explains_a_missing_build_refuses_bad_models_and_serves_files() {
     assert!(request("/model.json", "evil.example:80").starts_with("HTTP/1.1 403"));
     drop(child);
 }
+
+/// Point clouds in: `.npy` files written by numpy itself (`tests/fixtures`, made by the script
+/// beside them) and PLY with normals; a cloud without normals is refused, saying what is
+/// missing.
+#[test]
+fn fit_reads_point_clouds_from_npy_and_ply() {
+    let dir = tempfile::tempdir().unwrap();
+    let fixtures = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures");
+    let out = dir.path().join("m.json");
+    let out_arg = out.to_str().unwrap();
+    let on_sphere = |model: &str| {
+        // f at the sphere's own points (fresh ones, not the fitted ones) and at the centre.
+        let probe: String = rbf_core::shapes::fibonacci_sphere(7)
+            .into_iter()
+            .map(|p| format!("{} {} {}\n", p[0], p[1], p[2]))
+            .collect::<String>()
+            + "0 0 0\n";
+        let o = rbf(&["eval", model, "-"], Some(&probe));
+        assert!(o.status.success(), "{}", stderr(&o));
+        let values: Vec<f64> = String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .map(|l| l.trim().parse().unwrap())
+            .collect();
+        assert!(values[..7].iter().all(|v| v.abs() < 0.05), "{values:?}");
+        assert!(values[7] > 0.0, "the centre is inside: {values:?}");
+    };
+    for file in ["sphere_oriented.npy", "sphere_values_f4_fortran_be.npy"] {
+        let o = rbf(
+            &["fit", &format!("{fixtures}/{file}"), "-o", out_arg, "-q"],
+            None,
+        );
+        assert!(o.status.success(), "{file}: {}", stderr(&o));
+        on_sphere(out_arg);
+    }
+    let info = rbf(&["info", out_arg], None);
+    assert!(String::from_utf8_lossy(&info.stdout).contains("60 boundary, 8 interior"));
+    // PLY, binary little-endian, with normals: the sphere again.
+    let points = rbf_core::shapes::fibonacci_sphere(60);
+    let mut ply = format!(
+        "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\nend_header\n",
+        points.len()
+    )
+    .into_bytes();
+    for p in &points {
+        for v in p.iter().chain(p) {
+            ply.extend_from_slice(&(*v as f32).to_le_bytes());
+        }
+    }
+    let scan = dir.path().join("scan.ply");
+    std::fs::write(&scan, &ply).unwrap();
+    let o = rbf(&["fit", scan.to_str().unwrap(), "-o", out_arg, "-q"], None);
+    assert!(o.status.success(), "{}", stderr(&o));
+    on_sphere(out_arg);
+    // Without normals: refused, saying so.
+    let bare = write(
+        dir.path(),
+        "bare.ply",
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n",
+    );
+    for file in [bare, PathBuf::from(format!("{fixtures}/sphere_points.npy"))] {
+        let o = rbf(&["fit", file.to_str().unwrap(), "-o", out_arg], None);
+        assert_eq!(o.status.code(), Some(2));
+        assert!(
+            stderr(&o).contains("has points but no normals"),
+            "{}",
+            stderr(&o)
+        );
+    }
+    // A truncated array names the file and what is short.
+    let cut = dir.path().join("cut.npy");
+    let whole = std::fs::read(format!("{fixtures}/sphere_oriented.npy")).unwrap();
+    std::fs::write(&cut, &whole[..whole.len() - 8]).unwrap();
+    let o = rbf(&["fit", cut.to_str().unwrap(), "-o", out_arg], None);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("cut.npy") && stderr(&o).contains("bytes of data"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -41,7 +41,10 @@ mod winding;
 pub use check::MeshReport;
 pub use distance::{signed_distance, squared_distance_transform};
 pub use error::{Location, MeshError};
-pub use io::{mesh_bytes, read_mesh, read_mesh_bytes, write_mesh};
+pub use io::{
+    Matrix, PointCloud, mesh_bytes, read_mesh, read_mesh_bytes, read_npy_matrix, read_point_cloud,
+    read_point_cloud_bytes, write_mesh,
+};
 pub use mesh::TriMesh;
 pub use polygonize::{
     BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, polygonize_continuation,

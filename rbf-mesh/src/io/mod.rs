@@ -1,9 +1,14 @@
 //! Reading and writing meshes: OBJ, PLY (ASCII and binary) and STL (ASCII and binary) in;
 //! OBJ, binary PLY and binary STL out. Format by file extension.
 
+mod cloud;
+mod npy;
 mod obj;
 mod ply;
 mod stl;
+
+pub use cloud::{PointCloud, read_point_cloud, read_point_cloud_bytes};
+pub use npy::{Matrix, read_npy_matrix};
 
 use std::path::Path;
 
@@ -28,7 +33,10 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, MeshError> {
 pub fn read_mesh_bytes(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
     let (positions, triangles) = match extension(path).as_deref() {
         Some("obj") => obj::read(path, bytes)?,
-        Some("ply") => ply::read(path, bytes)?,
+        Some("ply") => {
+            let (positions, triangles, _) = ply::read(path, bytes)?;
+            (positions, triangles)
+        }
         Some("stl") => stl::read(path, bytes)?,
         _ => return Err(MeshError::UnknownFormat { file: path.into() }),
     };

@@ -5,7 +5,8 @@ use std::path::Path;
 use super::{at_byte, at_line, number};
 use crate::{MeshError, TriMesh};
 
-type Parts = (Vec<[f64; 3]>, Vec<[u32; 3]>);
+/// Vertex positions, triangles, and vertex normals when the vertices carry `nx ny nz`.
+type Parts = (Vec<[f64; 3]>, Vec<[u32; 3]>, Option<Vec<[f64; 3]>>);
 
 #[derive(Clone, Copy, PartialEq)]
 enum Format {
@@ -216,6 +217,15 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<Parts, MeshError> {
     };
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
+    let mut normals = Vec::new();
+    let has_normals = elements.iter().any(|e| {
+        e.name == "vertex"
+            && ["nx", "ny", "nz"].iter().all(|n| {
+                e.properties
+                    .iter()
+                    .any(|p| matches!(p, Property::Scalar(name, _) if name == n))
+            })
+    });
     for e in &elements {
         let remaining = (bytes.len() - body.pos) as u64;
         // Each instance takes at least one byte (two in ASCII: a digit and a separator).
@@ -236,6 +246,7 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<Parts, MeshError> {
         }
         for _ in 0..e.count {
             let mut p = [f64::NAN; 3];
+            let mut n = [0.0; 3];
             for prop in &e.properties {
                 match prop {
                     Property::Scalar(name, s) => {
@@ -245,6 +256,9 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<Parts, MeshError> {
                                 "x" => p[0] = v,
                                 "y" => p[1] = v,
                                 "z" => p[2] = v,
+                                "nx" => n[0] = v,
+                                "ny" => n[1] = v,
+                                "nz" => n[2] = v,
                                 _ => {}
                             }
                         }
@@ -278,10 +292,13 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<Parts, MeshError> {
                     return Err(body.error("a vertex without x, y and z"));
                 }
                 positions.push(p);
+                if has_normals {
+                    normals.push(n);
+                }
             }
         }
     }
-    Ok((positions, triangles))
+    Ok((positions, triangles, has_normals.then_some(normals)))
 }
 
 pub(super) fn write(mesh: &TriMesh) -> Vec<u8> {

@@ -153,3 +153,38 @@ fn unknown_extensions_and_missing_files_are_errors() {
     let e = read_mesh(Path::new("/nonexistent/a.obj")).unwrap_err();
     assert!(e.to_string().contains("/nonexistent/a.obj"));
 }
+
+/// Every prefix of a `.npy` file, and every single-byte change of its header, reads without a
+/// panic: an error, or (for changes that keep it valid) a matrix of the declared shape.
+#[test]
+fn npy_files_cut_or_corrupted_are_errors_not_panics() {
+    let header = "{'descr': '<f8', 'fortran_order': True, 'shape': (3, 2), }";
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    let padded = format!("{header:<117}\n");
+    bytes.extend_from_slice(&(padded.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(padded.as_bytes());
+    for v in [1.0f64, 2.0, 3.0, 4.0, 5.0, 6.0] {
+        bytes.extend_from_slice(&v.to_le_bytes());
+    }
+    let path = std::path::Path::new("m.npy");
+    let m = rbf_mesh::read_npy_matrix(path, &bytes).unwrap();
+    // Fortran order on disk: columns (1 2 3) and (4 5 6); rows come out (1 4) (2 5) (3 6).
+    assert_eq!((m.rows, m.cols), (3, 2));
+    assert_eq!(m.data, vec![1.0, 4.0, 2.0, 5.0, 3.0, 6.0]);
+    for cut in 0..bytes.len() {
+        assert!(
+            rbf_mesh::read_npy_matrix(path, &bytes[..cut]).is_err(),
+            "cut at {cut}"
+        );
+    }
+    for at in 0..128 {
+        for byte in [0u8, b'9', b')', b'\'', 0xff] {
+            let mut changed = bytes.clone();
+            changed[at] = byte;
+            if let Ok(m) = rbf_mesh::read_npy_matrix(path, &changed) {
+                assert_eq!(m.data.len(), m.rows * m.cols);
+            }
+            let _ = rbf_mesh::read_point_cloud_bytes(path, &changed);
+        }
+    }
+}
