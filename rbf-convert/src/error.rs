@@ -35,20 +35,6 @@ pub enum ConvertError {
         /// Pixels along the longer side, as given.
         resolution: usize,
     },
-    /// A pixel grid too large for the machine (24 bytes a pixel, as the voxelizer counts).
-    #[error(
-        "a grid of {pixels} pixels is too large: it needs about {} MiB{}; use a coarser resolution",
-        bytes >> 20,
-        available.map_or(String::new(), |a| format!(" but only {} MiB can be spared", a >> 20))
-    )]
-    TooLarge {
-        /// Pixels in the grid, margins included.
-        pixels: u64,
-        /// Bytes the grid and its distances would take.
-        bytes: u64,
-        /// Bytes the machine can spare (`rbf_solve::memory_budget`), when known.
-        available: Option<u64>,
-    },
     /// The settings allow no iteration (`max_iterations` is 0).
     #[error("no iteration ran: max_iterations must be at least 1")]
     NoIteration,

@@ -118,17 +118,7 @@ pub fn convert_iterative_2d(
         (((hi[d] - lo[d]) / h).ceil().max(1.0) as usize).saturating_add(m.saturating_mul(2))
     };
     let shape = [side(0), side(1), 1];
-    // The same rule as the voxelizer's: at most 2³³ cells, 24 bytes each within the budget.
-    let pixels = (shape[0] as u64).saturating_mul(shape[1] as u64);
-    let bytes = pixels.saturating_mul(24);
-    let available = rbf_solve::memory_budget();
-    if pixels > 1 << 33 || available.is_some_and(|a| bytes > a) {
-        return Err(ConvertError::TooLarge {
-            pixels,
-            bytes,
-            available,
-        });
-    }
+    rbf_mesh::check_volume_size(shape, rbf_solve::memory_budget())?;
     // Pixel (i, j) is centred at lo + (i − m + ½)·h, as the voxelizer places voxels.
     let origin = [
         lo[0] - (m as f64 - 0.5) * h,

@@ -57,6 +57,32 @@ impl Default for VoxelSettings {
 /// The peak memory of [`voxelize`] followed by [`crate::signed_distance`], per voxel.
 const BYTES_PER_VOXEL: u64 = 24;
 
+/// Refuses a volume of `shape` voxels that the machine cannot hold with its signed distance:
+/// 24 bytes a voxel (densities, squared distances, their sources, the surface offsets, the
+/// result) against `memory_limit`, and never more than 2³³ voxels. Used by the voxelizer and by
+/// whoever builds such a volume another way (rbf-convert's 2D goal).
+///
+/// ```
+/// assert!(rbf_mesh::check_volume_size([100, 100, 100], Some(1 << 30)).is_ok());
+/// let e = rbf_mesh::check_volume_size([1 << 20, 1 << 20, 1], None).unwrap_err();
+/// assert!(e.to_string().contains("too large"));
+/// ```
+pub fn check_volume_size(shape: [usize; 3], memory_limit: Option<u64>) -> Result<(), MeshError> {
+    let voxels = shape.iter().try_fold(1u64, |a, &b| a.checked_mul(b as u64));
+    let bytes = voxels.map_or(u64::MAX, |v| v.saturating_mul(BYTES_PER_VOXEL));
+    if voxels.is_none_or(|v| v > 1 << 33) || memory_limit.is_some_and(|a| bytes > a) {
+        return Err(MeshError::Invalid(format!(
+            "a volume of {shape:?} voxels is too large: it needs about {} MiB{}; use a coarser resolution",
+            bytes >> 20,
+            memory_limit.map_or(String::new(), |a| format!(
+                " but only {} MiB can be spared",
+                a >> 20
+            ))
+        )));
+    }
+    Ok(())
+}
+
 /// The grid a mesh is voxelized on.
 pub(crate) fn voxel_grid(
     mesh: &TriMesh,
@@ -82,22 +108,7 @@ pub(crate) fn voxel_grid(
     let shape: [usize; 3] = core::array::from_fn(|d| {
         (((hi[d] - lo[d]) / h).ceil().max(1.0) as usize).saturating_add(m.saturating_mul(2))
     });
-    let voxels = shape.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
-    // A volume and its signed distance take at most 24 bytes a voxel (densities, squared
-    // distances, their sources, the surface offsets, the result); refuse what the machine
-    // cannot hold.
-    let bytes = voxels.map_or(u64::MAX, |v| (v as u64).saturating_mul(BYTES_PER_VOXEL));
-    let available = settings.memory_limit;
-    if voxels.is_none_or(|v| v as u64 > 1 << 33) || available.is_some_and(|a| bytes > a) {
-        return Err(MeshError::Invalid(format!(
-            "a volume of {shape:?} voxels is too large: it needs about {} MiB{}; use a coarser resolution",
-            bytes >> 20,
-            available.map_or(String::new(), |a| format!(
-                " but only {} MiB can be spared",
-                a >> 20
-            ))
-        )));
-    }
+    check_volume_size(shape, settings.memory_limit)?;
     let origin = core::array::from_fn(|d| lo[d] - (m as f64 - 0.5) * h);
     Ok(Volume::filled(origin, h, shape, 0.0))
 }
