@@ -29,6 +29,7 @@ impl Failure {
         let code = match e {
             FitError::Singular { .. }
             | FitError::IllConditioned { .. }
+            | FitError::NotConverged { .. }
             | FitError::TooLarge { .. } => NUMERICAL,
             _ => BAD_INPUT,
         };

@@ -376,6 +376,7 @@ fn numerical_failures_exit_3() {
 #[test]
 fn a_system_too_large_for_memory_exits_3_with_its_size() {
     // 200 000 value constraints: a dense system of 320 GB, refused before any allocation.
+    // (Without --method dense, the iterative solver would take them.)
     let dir = tempfile::tempdir().unwrap();
     let mut text = String::with_capacity(200_000 * 40);
     for i in 0..200_000_u64 {
@@ -383,7 +384,17 @@ fn a_system_too_large_for_memory_exits_3_with_its_size() {
         text.push_str(&format!("{x} {y} {z} {}\n", if i == 0 { 1 } else { 0 }));
     }
     let input = write(dir.path(), "huge.txt", &text);
-    let o = rbf(&["fit", input.to_str().unwrap(), "-o", "/dev/null"], None);
+    let o = rbf(
+        &[
+            "fit",
+            input.to_str().unwrap(),
+            "-o",
+            "/dev/null",
+            "--method",
+            "dense",
+        ],
+        None,
+    );
     assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
     let e = stderr(&o);
     assert!(e.contains("200000 rows needs") && e.contains("MiB"), "{e}");
@@ -1145,6 +1156,53 @@ fn compare_measures_a_sphere_against_a_cube_both_ways() {
         None,
     );
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+}
+
+#[test]
+fn large_fits_go_to_the_iterative_solver_which_says_when_it_stops_short() {
+    let dir = tempfile::tempdir().unwrap();
+    // 3000 oriented points: 6000 rows, above the dense limit of --method auto.
+    let points: String = rbf_core::shapes::fibonacci_sphere(3000)
+        .into_iter()
+        .map(|p| format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2]))
+        .collect();
+    let (model, o) = fit_file(dir.path(), "cloud.txt", &points, &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("Iterative") && stderr(&o).contains("iterations"),
+        "{}",
+        stderr(&o)
+    );
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&model).unwrap()).unwrap();
+    assert_eq!(m["report"]["method"], "iterative");
+    assert!(m["report"]["residual"].as_f64().unwrap() <= 1e-7);
+    // The dense method on the same rows: the same surface.
+    let (_, o) = fit_file(dir.path(), "cloud.txt", &points, &["--method", "dense"]);
+    assert!(stderr(&o).contains("ProjectedCholesky"), "{}", stderr(&o));
+    // One iteration cannot reach 1e-7: an error (exit 3) that says so, or, when allowed, a
+    // model and a warning.
+    let short = ["--method", "fast", "--max-iterations", "1"];
+    let (_, o) = fit_file(dir.path(), "cloud.txt", &points, &short);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).contains("did not converge"), "{}", stderr(&o));
+    let allowed = [&short[..], &["--allow-unconverged"]].concat();
+    let (model, o) = fit_file(dir.path(), "cloud.txt", &points, &allowed);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("warning: the iterative solve stopped"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(model.exists());
+    // Options of other methods are refused.
+    for bad in [
+        &["--tolerance", "1e-3"][..],
+        &["--method", "fast", "--solver", "lu"],
+    ] {
+        let (_, o) = fit_file(dir.path(), "cloud.txt", &points, bad);
+        assert_eq!(o.status.code(), Some(1), "{bad:?}: {}", stderr(&o));
+    }
 }
 
 #[test]

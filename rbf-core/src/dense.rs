@@ -92,6 +92,7 @@ pub fn solve_dense<const D: usize>(
             method: SolveMethod::Lu,
             condition,
             refinements,
+            iterations: 0,
         },
     )
 }

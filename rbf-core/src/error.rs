@@ -128,6 +128,18 @@ pub enum FitError {
         /// Estimated condition number.
         condition: f64,
     },
+    /// The iterative solver stopped at its iteration cap above its tolerance.
+    #[error(
+        "the iterative solver did not converge: residual {residual:e} after {iterations} iterations, above the tolerance {tolerance:e}: allow more iterations, give the preconditioner larger subdomains, or set λ > 0"
+    )]
+    NotConverged {
+        /// Iterations made.
+        iterations: usize,
+        /// The true residual reached, max|f(cᵢ) + λᵢwᵢ − hᵢ| relative to max|hᵢ|.
+        residual: f64,
+        /// The residual it had to reach.
+        tolerance: f64,
+    },
 }
 
 struct AvailableNote(Option<u64>);

@@ -15,6 +15,9 @@ pub enum SolveMethod {
     ProjectedCholesky,
     /// Symmetric-indefinite LBLᵀ (Bunch–Kaufman) of the projected kernel block.
     ProjectedLblt,
+    /// Flexible GMRES with a two-level domain-decomposition preconditioner (rbf-solve's
+    /// solver for large systems).
+    Iterative,
 }
 
 /// Figures of a fit.
@@ -31,6 +34,9 @@ pub struct FitReport {
     pub condition: f64,
     /// Steps of iterative refinement taken.
     pub refinements: usize,
+    /// Iterations of an iterative solver (0 for a factorization).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub iterations: usize,
 }
 
 /// An interpolant and the figures of the fit that produced it.
@@ -57,6 +63,8 @@ pub struct Solution<'a> {
     pub condition: f64,
     /// Rounds of iterative refinement applied.
     pub refinements: usize,
+    /// Iterations of an iterative solver (0 for a factorization).
+    pub iterations: usize,
 }
 
 impl<const D: usize> System<D> {
@@ -75,6 +83,7 @@ impl<const D: usize> System<D> {
     ///     method: SolveMethod::Lu,
     ///     condition: 1.0,
     ///     refinements: 0,
+    ///     iterations: 0,
     /// };
     /// assert!(system.accept(&settings, &zeros).is_err());
     /// ```
@@ -86,6 +95,7 @@ impl<const D: usize> System<D> {
             method,
             condition,
             refinements,
+            iterations,
         } = *solution;
         if !weights.iter().chain(polynomial).all(|v| v.is_finite()) {
             return Err(FitError::Singular {
@@ -117,6 +127,7 @@ impl<const D: usize> System<D> {
                 residual,
                 condition,
                 refinements,
+                iterations,
             },
         })
     }

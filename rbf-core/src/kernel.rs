@@ -110,7 +110,8 @@ impl Kernel {
 
     /// The power of `s` by which φ scales when every distance is scaled by `s`
     /// (exactly for r³ and r; for r² log r up to a term that the linear polynomial absorbs).
-    pub(crate) const fn scale_exponent(self) -> i32 {
+    #[doc(hidden)]
+    pub const fn scale_exponent(self) -> i32 {
         match self {
             Kernel::Cubic => 3,
             Kernel::Linear => 1,

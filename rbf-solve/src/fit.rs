@@ -179,6 +179,7 @@ fn run<const D: usize>(
             method,
             condition: norm1 * inverse,
             refinements,
+            iterations: 0,
         },
     )
 }

@@ -33,6 +33,7 @@
 //! assert!(fit.interpolant.value(&[0.0; 3]) > 0.0);
 //! ```
 
+mod fast;
 mod fit;
 mod greedy;
 mod householder;
@@ -41,6 +42,7 @@ mod memory;
 mod probe;
 mod projected;
 
+pub use fast::{IterativeOptions, IterativeProgress, SchwarzSettings, solve_iterative};
 pub use fit::{SolveOptions, Strategy, fit, solve};
 pub use greedy::{GreedyReport, GreedyRound, GreedySettings, fit_greedy};
 pub use memory::{check_constraints_fit, check_fits};

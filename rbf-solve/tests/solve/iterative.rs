@@ -1,0 +1,198 @@
+//! The iterative solver gives the dense solver's interpolant, for every kernel, with λ (global
+//! and per constraint) and normal constraints; it reports what it did and refuses to stop short.
+
+use rbf_core::{Constraint, FitError, FitSettings, Kernel, SolveMethod, System};
+use rbf_solve::{
+    IterativeOptions, IterativeProgress, SchwarzSettings, SolveOptions, solve_iterative,
+};
+
+/// A deterministic generator, so that the clouds are the same on every run.
+struct Rng(u64);
+
+impl Rng {
+    fn uniform(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn direction(&mut self) -> [f64; 3] {
+        loop {
+            let v = [
+                2.0 * self.uniform() - 1.0,
+                2.0 * self.uniform() - 1.0,
+                2.0 * self.uniform() - 1.0,
+            ];
+            let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            if l > 0.1 && l <= 1.0 {
+                return [v[0] / l, v[1] / l, v[2] / l];
+            }
+        }
+    }
+}
+
+/// Random oriented points on a bumpy sphere (normal constraints: two rows each).
+fn bumpy(n: usize, seed: u64) -> Vec<Constraint<3>> {
+    let mut rng = Rng(seed);
+    (0..n)
+        .map(|_| {
+            let u = rng.direction();
+            let r = 1.0 + 0.1 * (5.0 * u[2]).sin() * (3.0 * u[0]).cos();
+            Constraint::normal([r * u[0], r * u[1], r * u[2]], u)
+        })
+        .collect()
+}
+
+/// Random value constraints in the unit cube: a smooth function, scattered data.
+fn scattered(n: usize, seed: u64) -> Vec<Constraint<3>> {
+    let mut rng = Rng(seed);
+    (0..n)
+        .map(|_| {
+            let p = [rng.uniform(), rng.uniform(), rng.uniform()];
+            let v = (3.0 * p[0]).sin() + p[1] * p[2] - 0.4;
+            match v {
+                v if v > 0.0 => Constraint::interior(p, v),
+                v if v < 0.0 => Constraint::exterior(p, v),
+                _ => Constraint::boundary(p),
+            }
+        })
+        .collect()
+}
+
+fn tight() -> IterativeOptions {
+    IterativeOptions {
+        tolerance: Some(1e-11),
+        schwarz: SchwarzSettings {
+            inner: 64,
+            extended: 160,
+            coarse: 300,
+        },
+        ..Default::default()
+    }
+}
+
+/// max |f_iterative − f_dense| over random points of the box, relative to max |f_dense| there.
+fn disagreement(cs: &[Constraint<3>], settings: &FitSettings, options: &IterativeOptions) -> f64 {
+    let system = System::new(cs, settings).unwrap();
+    let dense = rbf_solve::solve(&system, settings, &SolveOptions::default()).unwrap();
+    let fast = solve_iterative(&system, settings, options, |_| {}).unwrap();
+    assert_eq!(fast.report.method, SolveMethod::Iterative);
+    assert!(fast.report.iterations > 0);
+    let mut rng = Rng(7);
+    let (mut worst, mut scale) = (0.0_f64, 0.0_f64);
+    for _ in 0..400 {
+        let x = [
+            2.4 * rng.uniform() - 1.2,
+            2.4 * rng.uniform() - 1.2,
+            2.4 * rng.uniform() - 1.2,
+        ];
+        let a = dense.interpolant.value(&x);
+        worst = worst.max((fast.interpolant.value(&x) - a).abs());
+        scale = scale.max(a.abs());
+    }
+    worst / scale
+}
+
+#[test]
+fn agrees_with_the_dense_solver_for_every_kernel_with_and_without_lambda() {
+    for kernel in [Kernel::Cubic, Kernel::Linear, Kernel::ThinPlate] {
+        for lambda in [0.0, 1e-4] {
+            let settings = FitSettings {
+                kernel: Some(kernel),
+                lambda,
+                ..Default::default()
+            };
+            let d = disagreement(&bumpy(900, 1), &settings, &tight());
+            assert!(d < 1e-8, "{kernel:?} λ = {lambda}: {d:e}");
+        }
+    }
+}
+
+#[test]
+fn agrees_with_the_dense_solver_on_scattered_values_and_per_constraint_smoothing() {
+    let mut cs = scattered(1500, 3);
+    for (i, c) in cs.iter_mut().enumerate() {
+        c.smoothing = if i % 3 == 0 { 1e-3 } else { 0.0 };
+    }
+    let d = disagreement(&cs, &FitSettings::default(), &tight());
+    assert!(d < 1e-8, "{d:e}");
+}
+
+#[test]
+fn agrees_with_the_dense_solver_on_ten_thousand_rows() {
+    let options = IterativeOptions {
+        tolerance: Some(1e-10),
+        ..Default::default()
+    };
+    let d = disagreement(&bumpy(5000, 11), &FitSettings::default(), &options);
+    assert!(d < 1e-8, "{d:e}");
+}
+
+#[test]
+fn reports_progress_and_meets_every_row_by_direct_sums() {
+    let cs = bumpy(3000, 5);
+    let settings = FitSettings::default();
+    let system = System::new(&cs, &settings).unwrap();
+    let mut seen = Vec::new();
+    let fit = solve_iterative(&system, &settings, &IterativeOptions::default(), |p| {
+        seen.push(p)
+    })
+    .unwrap();
+    assert_eq!(seen.first(), Some(&IterativeProgress::Preconditioning));
+    let iterations = seen
+        .iter()
+        .filter(|p| matches!(p, IterativeProgress::Iteration { .. }))
+        .count();
+    assert_eq!(iterations, fit.report.iterations);
+    let Some(IterativeProgress::Checked { residual, .. }) = seen.last() else {
+        panic!("no final check: {seen:?}");
+    };
+    assert!(*residual <= 1e-7, "{residual:e}");
+    // Every row, by a direct sum in the caller's coordinates.
+    let f = &fit.interpolant;
+    let hmax = system.values().iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    for (p, h) in system.points().iter().zip(system.values()) {
+        assert!((f.value(p) - h).abs() <= 1e-7 * hmax);
+    }
+}
+
+#[test]
+fn a_problem_that_does_not_converge_in_the_cap_is_an_error() {
+    let cs = bumpy(2000, 9);
+    let settings = FitSettings::default();
+    let system = System::new(&cs, &settings).unwrap();
+    let options = IterativeOptions {
+        max_iterations: 2,
+        tolerance: Some(1e-14),
+        ..Default::default()
+    };
+    match solve_iterative(&system, &settings, &options, |_| {}) {
+        Err(FitError::NotConverged {
+            iterations,
+            residual,
+            tolerance,
+        }) => {
+            assert_eq!(iterations, 2);
+            assert!(residual > tolerance);
+        }
+        other => panic!("expected NotConverged, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_flat_patch_or_a_tiny_system_still_solves() {
+    // Value constraints on a plane and one point off it: the subdomains on the plane are flat.
+    let mut cs: Vec<Constraint<3>> = (0..400)
+        .map(|i| Constraint::boundary([(i % 20) as f64 * 0.05, (i / 20) as f64 * 0.05, 0.0]))
+        .collect();
+    cs.push(Constraint::interior([0.5, 0.5, -0.3], 1.0));
+    let d = disagreement(&cs, &FitSettings::default(), &tight());
+    assert!(d < 1e-8, "{d:e}");
+    let d = disagreement(
+        &rbf_core::shapes::tetrahedron_blob(),
+        &FitSettings::default(),
+        &tight(),
+    );
+    assert!(d < 1e-8, "{d:e}");
+}
