@@ -43,7 +43,8 @@ pub(crate) struct ConvertArgs {
     /// Conversion method.
     #[arg(long, value_enum, default_value_t = Method::Iterative)]
     method: Method,
-    /// Most constraints placed [default: 5000 iterative; 4000 vertices (two rows each) normals].
+    /// Most constraints placed [default: 5000 iterative; every vertex (two rows each) normals,
+    /// or 5000 with --tolerance]; fewer vertices than the mesh has are spread evenly.
     #[arg(long, value_name = "N")]
     max_constraints: Option<usize>,
     /// Voxels along the longest side of the mesh's bounding box (iterative).
@@ -87,7 +88,7 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
         Method::Normals => {
             let settings = NormalSettings {
                 offset: NormalOffset::Relative(args.offset),
-                max_vertices: args.max_constraints.unwrap_or(4000),
+                max_vertices: args.max_constraints.unwrap_or(usize::MAX),
                 lambda: args.lambda,
                 tolerance: args.tolerance,
             };
@@ -118,14 +119,19 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                     None if report.thinned => " (thinned evenly)".into(),
                     None => String::new(),
                 };
+                let how = match report.fit.method {
+                    rbf_core::SolveMethod::Iterative => {
+                        format!("{} iterations", report.fit.iterations)
+                    }
+                    _ => format!("condition ≈ {:.1e}", report.fit.condition),
+                };
                 eprintln!(
-                    "{} of {} vertices used{thinned}, {} without a normal; {} rows, residual {:.1e}, condition ≈ {:.1e}; {:.2} s; wrote {}",
+                    "{} of {} vertices used{thinned}, {} without a normal; {} rows, residual {:.1e}, {how}; {:.2} s; wrote {}",
                     report.vertices_used,
                     report.vertices,
                     report.without_normal,
                     report.fit.rows,
                     report.fit.residual,
-                    report.fit.condition,
                     start.elapsed().as_secs_f64(),
                     args.output.display()
                 );

@@ -116,10 +116,6 @@ enum MethodArg {
     Greedy,
 }
 
-/// Rows above which `--method auto` solves iteratively: the dense solve of 5000 rows takes
-/// about 0.4 s on two cores and grows as K³, the iterative one as K² (direct products).
-const DENSE_LIMIT: usize = 5000;
-
 /// Factorizations by their command-line names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum SolverArg {
@@ -385,14 +381,16 @@ impl Job<'_> {
         let start = Instant::now();
         let rows: usize = constraints.iter().map(Constraint::rows).sum();
         let dense = match self.method {
-            MethodArg::Auto => rows <= DENSE_LIMIT,
+            MethodArg::Auto => rows <= rbf_solve::DENSE_LIMIT,
             m => m == MethodArg::Dense,
         };
+        // Too many constraints for memory: say so before the checks, which take time too.
         if dense {
-            // Too many constraints for memory: say so before the checks, which take time too.
             rbf_solve::check_constraints_fit(&constraints)
-                .map_err(|e| Failure::fit(self.source, &e))?;
+        } else {
+            rbf_solve::check_iterative_fits(rows, D, &self.iterative)
         }
+        .map_err(|e| Failure::fit(self.source, &e))?;
         let spinner = spinner(self.quiet, format!("checking {rows} rows"));
         let system =
             System::new(&constraints, &self.settings).map_err(|e| Failure::fit(self.source, &e))?;
@@ -430,7 +428,7 @@ impl Job<'_> {
         let tolerance = 0.1 * self.settings.max_residual;
         if report.method == SolveMethod::Iterative && report.residual > tolerance {
             eprintln!(
-                "rbf: warning: the iterative solve stopped at residual {:.1e} after {} iterations, above its tolerance {tolerance:.1e}",
+                "rbf: warning: the iterative solve stopped at residual {:.1e} after {} iterations, above its target {tolerance:.1e}",
                 report.residual, report.iterations
             );
         }

@@ -46,6 +46,7 @@ fn describe<const D: usize>(m: &Model<D>, file: &str) -> serde_json::Value {
             "method": format!("{:?}", r.method),
             "residual": r.residual,
             "condition": r.condition,
+            "iterations": r.iterations,
         })),
     })
 }
@@ -79,12 +80,15 @@ pub(crate) fn run(args: &InfoArgs) -> Result<(), Failure> {
         v["bounding_box"]["min"], v["bounding_box"]["max"]
     );
     if let Some(f) = v["fit"].as_object() {
+        let how = match f["condition"].as_f64() {
+            Some(c) => format!("condition ≈ {c:.1e}"),
+            None => format!("{} iterations", f["iterations"]),
+        };
         println!(
-            "  fit: {} rows by {}, residual {:.1e}, condition ≈ {:.1e}",
+            "  fit: {} rows by {}, residual {:.1e}, {how}",
             f["rows"],
             f["method"].as_str().unwrap_or("?"),
             f["residual"].as_f64().unwrap_or(f64::NAN),
-            f["condition"].as_f64().unwrap_or(f64::NAN)
         );
     }
     Ok(())

@@ -12,7 +12,9 @@ pub struct NormalSettings {
     /// (the papers' 0.01 for a model in a unit cube).
     pub offset: NormalOffset,
     /// At most this many vertices are used (each gives two rows); more are thinned to an evenly
-    /// spread subset. 4000 by default (8000 rows, a few seconds to solve).
+    /// spread subset. Every vertex by default (`usize::MAX`): above 2500 vertices the fit is
+    /// iterative, in memory and time that grow with the vertices (a 48 000-vertex mesh whole).
+    /// With a `tolerance`, the greedy fit's budget (5000 when unset).
     pub max_vertices: usize,
     /// Regularization λ of the fit.
     pub lambda: f64,
@@ -27,7 +29,7 @@ impl Default for NormalSettings {
     fn default() -> Self {
         Self {
             offset: NormalOffset::Relative(0.01),
-            max_vertices: 4000,
+            max_vertices: usize::MAX,
             lambda: 0.0,
             tolerance: None,
         }
@@ -94,7 +96,11 @@ pub fn convert_normals(
             let all: Vec<Constraint<3>> = candidates.iter().map(|&v| normal(v)).collect();
             let greedy = rbf_solve::GreedySettings {
                 tolerance,
-                max_constraints: settings.max_vertices,
+                max_constraints: if settings.max_vertices == usize::MAX {
+                    rbf_solve::GreedySettings::default().max_constraints
+                } else {
+                    settings.max_vertices
+                },
                 ..Default::default()
             };
             let (fit, r) = rbf_solve::fit_greedy(&all, &fit_settings, &greedy, |_| {})?;

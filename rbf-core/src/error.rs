@@ -128,16 +128,16 @@ pub enum FitError {
         /// Estimated condition number.
         condition: f64,
     },
-    /// The iterative solver stopped at its iteration cap above its tolerance.
+    /// The iterative solver stopped (at its iteration cap, or stalled) above the residual limit.
     #[error(
-        "the iterative solver did not converge: residual {residual:e} after {iterations} iterations, above the tolerance {tolerance:e}: allow more iterations, give the preconditioner larger subdomains, or set λ > 0"
+        "the iterative solver did not converge: residual {residual:.1e} after {iterations} iterations, above the limit {tolerance:.1e}: allow more iterations, give the preconditioner larger subdomains, or set λ > 0"
     )]
     NotConverged {
         /// Iterations made.
         iterations: usize,
         /// The true residual reached, max|f(cᵢ) + λᵢwᵢ − hᵢ| relative to max|hᵢ|.
         residual: f64,
-        /// The residual it had to reach.
+        /// The largest accepted residual, `FitSettings::max_residual`.
         tolerance: f64,
     },
 }

@@ -30,13 +30,22 @@ pub struct FitReport {
     pub method: SolveMethod,
     /// max |f(cᵢ) + λᵢwᵢ − hᵢ| / max |hᵢ|, measured on the returned interpolant.
     pub residual: f64,
-    /// An estimate of the 1-norm condition number of the (normalized) system.
+    /// An estimate of the 1-norm condition number of the (normalized) system; NaN when the
+    /// solver made none (the iterative one), written as `null` in a model file.
+    #[cfg_attr(feature = "serde", serde(deserialize_with = "nan_if_null"))]
     pub condition: f64,
     /// Steps of iterative refinement taken.
     pub refinements: usize,
     /// Iterations of an iterative solver (0 for a factorization).
     #[cfg_attr(feature = "serde", serde(default))]
     pub iterations: usize,
+}
+
+/// A number, or NaN for JSON's `null` (serde_json writes NaN as `null`).
+#[cfg(feature = "serde")]
+fn nan_if_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    use serde::Deserialize;
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
 }
 
 /// An interpolant and the figures of the fit that produced it.

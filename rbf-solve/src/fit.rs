@@ -45,7 +45,13 @@ impl Default for SolveOptions {
     }
 }
 
-/// Fits an interpolant to constraints with the scalable solver and default options.
+/// Rows above which [`fit`] solves iteratively ([`crate::solve_iterative`]) instead of by a
+/// dense factorization: on two cores the dense solve of 5000 rows takes about 0.4 s and grows
+/// as K³, the iterative one about 0.2 s, growing as K² (one direct product per iteration).
+pub const DENSE_LIMIT: usize = 5000;
+
+/// Fits an interpolant to constraints with default options: a dense factorization up to
+/// [`DENSE_LIMIT`] rows, the iterative solver above.
 ///
 /// ```
 /// use rbf_core::{Constraint, FitSettings};
@@ -69,6 +75,11 @@ pub fn fit<const D: usize>(
     constraints: &[Constraint<D>],
     settings: &FitSettings,
 ) -> Result<Fit<D>, FitError> {
+    let rows: usize = constraints.iter().map(Constraint::rows).sum();
+    if rows > DENSE_LIMIT {
+        let system = System::new(constraints, settings)?;
+        return crate::solve_iterative(&system, settings, &Default::default(), |_| {});
+    }
     check_constraints_fit(constraints)?;
     let system = System::new(constraints, settings)?;
     solve(&system, settings, &SolveOptions::default())

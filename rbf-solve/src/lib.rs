@@ -42,8 +42,10 @@ mod memory;
 mod probe;
 mod projected;
 
-pub use fast::{IterativeOptions, IterativeProgress, SchwarzSettings, solve_iterative};
-pub use fit::{SolveOptions, Strategy, fit, solve};
+pub use fast::{
+    IterativeOptions, IterativeProgress, SchwarzSettings, check_iterative_fits, solve_iterative,
+};
+pub use fit::{DENSE_LIMIT, SolveOptions, Strategy, fit, solve};
 pub use greedy::{GreedyReport, GreedyRound, GreedySettings, fit_greedy};
 pub use memory::{check_constraints_fit, check_fits};
 pub use probe::{available_memory, memory_budget};

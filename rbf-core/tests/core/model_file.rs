@@ -29,6 +29,27 @@ fn read(text: &str) -> Result<AnyModel, FileError> {
 }
 
 #[test]
+fn a_report_without_a_condition_estimate_round_trips() {
+    // The iterative solver estimates no condition number: NaN, written as null.
+    let mut m = model();
+    let report = m.report.as_mut().unwrap();
+    report.condition = f64::NAN;
+    report.method = rbf_core::SolveMethod::Iterative;
+    report.iterations = 7;
+    let json = m.to_json();
+    assert!(json.contains("\"condition\": null"), "{json}");
+    let AnyModel::Three(back) = read(&json).unwrap() else {
+        panic!("not 3D")
+    };
+    let r = back.report.unwrap();
+    assert!(r.condition.is_nan());
+    assert_eq!(
+        (r.method, r.iterations),
+        (rbf_core::SolveMethod::Iterative, 7)
+    );
+}
+
+#[test]
 fn round_trip_is_exact() {
     let m = model();
     let AnyModel::Three(back) = read(&m.to_json()).unwrap() else {
