@@ -1628,7 +1628,7 @@ fn a_scan_like_cloud_with_holes_closes_with_its_topology() {
         let o = rbf(&["check", surface.to_str().unwrap()], None);
         let text = String::from_utf8(o.stdout).unwrap();
         assert!(
-            text.contains(&format!("components 1,")) && text.contains(&format!("genus {genus}\n")),
+            text.contains("components 1,") && text.contains(&format!("genus {genus}\n")),
             "{name}: {text}"
         );
         assert!(text.contains("watertight: yes"), "{name}: {text}");
