@@ -1,6 +1,6 @@
 //! Fitting time against K, on the peers' workload (`peer_rbf.py`): K/2 points on the unit
-//! sphere with value 0 and K/2 moved 0.01 inward with value 1, r³ kernel; and greedy fits of
-//! 10⁴–10⁵ oriented points.
+//! sphere with value 0 and K/2 moved 0.01 inward with value 1, r³ kernel; the iterative solver
+//! against the dense one where both run, and beyond; greedy fits of 10⁴–10⁵ oriented points.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rbf_benches::sphere_constraints;
@@ -13,6 +13,7 @@ fn fit(c: &mut Criterion) {
     group.sample_size(10);
     for k in [500_usize, 1000, 2000, 4000, 8000] {
         let cs = sphere_constraints(k, 0);
+        // Up to 4000 the dense solver, at 8000 the iterative one (`rbf_solve::DENSE_LIMIT`).
         group.bench_with_input(BenchmarkId::new("auto", k), &cs, |b, cs| {
             b.iter(|| rbf_solve::fit(cs, &settings).expect("fit"))
         });
@@ -51,5 +52,31 @@ fn greedy(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, fit, greedy);
+/// The same workload through both solvers at 8000 rows, and the iterative one at 2·10⁴ and
+/// 5·10⁴ rows (dense: 3.2 and 20 GB), random points included (the workload's are random).
+fn iterative(c: &mut Criterion) {
+    let settings = FitSettings::default();
+    let mut group = c.benchmark_group("iterative");
+    group.sample_size(10);
+    for k in [8000_usize, 20_000, 50_000] {
+        let cs = sphere_constraints(k, 0);
+        let system = System::new(&cs, &settings).expect("valid");
+        group.bench_with_input(BenchmarkId::new("fgmres", k), &system, |b, system| {
+            b.iter(|| {
+                rbf_solve::solve_iterative(system, &settings, &Default::default(), |_| {})
+                    .expect("fit")
+            })
+        });
+        if k <= 8000 {
+            group.bench_with_input(BenchmarkId::new("dense", k), &system, |b, system| {
+                b.iter(|| {
+                    rbf_solve::solve(system, &settings, &SolveOptions::default()).expect("fit")
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, fit, iterative, greedy);
 criterion_main!(benches);

@@ -12,6 +12,9 @@ pub(crate) struct GmresLimits {
     pub(crate) max_iterations: usize,
 }
 
+/// The caller's verdict on an iterate x, given its true residual and the iterations so far.
+pub(crate) type Judge<'a> = dyn FnMut(&[f64], &[f64], usize) -> Acceptance + 'a;
+
 /// The end of a run.
 pub(crate) struct GmresEnd {
     pub(crate) x: Vec<f64>,
@@ -24,7 +27,8 @@ pub(crate) struct GmresEnd {
 ///
 /// - `apply(v, out)`: out = A v;
 /// - `precondition(v)`: an approximation of A⁻¹ v (it may change between calls);
-/// - `accept(x, r)`: given the iterate and its true residual r = b − A x, says whether it is
+/// - `accept(x, r, iterations)`: given the iterate, its true residual r = b − A x and the
+///   iterations so far, says whether it is
 ///   good enough; asked at every restart and whenever the recurrence's residual estimate falls
 ///   below `target(iteration)`, a 2-norm the caller may tighten after a refused check;
 /// - `progress(iteration, estimate)`: after every iteration.
@@ -33,7 +37,7 @@ pub(crate) fn fgmres(
     limits: &GmresLimits,
     apply: &(dyn Fn(&[f64], &mut [f64]) + Sync),
     precondition: &(dyn Fn(&[f64]) -> Vec<f64> + Sync),
-    accept: &mut dyn FnMut(&[f64], &[f64]) -> Acceptance,
+    accept: &mut Judge<'_>,
     progress: &mut dyn FnMut(usize, f64),
 ) -> GmresEnd {
     let n = b.len();
@@ -43,7 +47,7 @@ pub(crate) fn fgmres(
     let mut iterations = 0;
     let mut scratch = vec![0.0; n];
     loop {
-        let target = match accept(&x, &r) {
+        let target = match accept(&x, &r, iterations) {
             Acceptance::Done => {
                 return GmresEnd {
                     x,
@@ -196,7 +200,7 @@ mod tests {
             },
             &apply,
             &|v| v.iter().map(|x| x / 4.0).collect(),
-            &mut |_, r| {
+            &mut |_, r, _| {
                 checks += 1;
                 if norm(r) < 1e-12 * norm(&b) {
                     Acceptance::Done
@@ -231,7 +235,7 @@ mod tests {
             },
             &apply,
             &|v| v.to_vec(),
-            &mut |_, _| Acceptance::Continue { target: 0.0 },
+            &mut |_, _, _| Acceptance::Continue { target: 0.0 },
             &mut |_, _| {},
         );
         assert!(!end.converged);

@@ -13,6 +13,10 @@ use gmres::{Acceptance, GmresLimits, fgmres};
 use schwarz::Schwarz;
 pub use schwarz::SchwarzSettings;
 
+/// Iterations (and three checks) without halving the true residual after which the solver
+/// stops.
+const STALL: usize = 9;
+
 /// How the iterative solver runs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IterativeOptions {
@@ -56,7 +60,8 @@ pub enum IterativeProgress {
         /// The estimate.
         estimate: f64,
     },
-    /// The true residual at a check (max norm, relative to max|hᵢ|).
+    /// The true residual at a check (max norm, relative to max|hᵢ|): at the start, at every
+    /// restart, when the estimate says the tolerance may be met, and at the end.
     Checked {
         /// Iterations so far.
         iteration: usize,
@@ -81,7 +86,7 @@ pub fn solve_iterative<const D: usize>(
     system: &System<D>,
     settings: &FitSettings,
     options: &IterativeOptions,
-    mut progress: impl FnMut(IterativeProgress),
+    progress: impl FnMut(IterativeProgress),
 ) -> Result<Fit<D>, FitError> {
     let k = system.rows();
     let m = D + 1;
@@ -94,6 +99,7 @@ pub fn solve_iterative<const D: usize>(
             rule: "the tolerance must be finite and > 0",
         });
     }
+    let mut progress = progress;
     progress(IterativeProgress::Preconditioning);
     let schwarz = Schwarz::new(system, &options.schwarz);
     let hmax = system.values().iter().fold(0.0_f64, |a, v| a.max(v.abs()));
@@ -102,22 +108,30 @@ pub fn solve_iterative<const D: usize>(
 
     let apply = |x: &[f64], out: &mut [f64]| apply_system(system, x, out);
     let precondition = |v: &[f64]| schwarz.apply(system, &v[..k], &v[k..]);
+    let progress = std::cell::RefCell::new(progress);
     let mut last = f64::INFINITY;
-    let mut best = f64::INFINITY;
-    let mut stalled = 0;
-    let mut accept = |x: &[f64], r: &[f64]| {
+    // The residual last halved at this iteration.
+    let (mut best, mut improved_at, mut checks_since) = (f64::INFINITY, 0, 0);
+    let mut accept = |x: &[f64], r: &[f64], iteration: usize| {
         let rh = r[..k].iter().fold(0.0_f64, |a, v| a.max(v.abs()));
         let rg = r[k..].iter().fold(0.0_f64, |a, v| a.max(v.abs()));
         let wsum: f64 = x[..k].iter().map(|v| v.abs()).sum();
         last = rh / hmax;
+        (progress.borrow_mut())(IterativeProgress::Checked {
+            iteration,
+            residual: last,
+        });
         let moments_met = rg <= (tolerance * hmax).max(64.0 * f64::EPSILON * wsum);
-        // Rounding in the products puts a floor under the residual: three checks in a row
-        // without halving it end the iteration.
-        stalled = if last < 0.5 * best { 0 } else { stalled + 1 };
-        best = best.min(last);
+        if last < 0.5 * best {
+            (best, improved_at, checks_since) = (last, iteration, 0);
+        } else {
+            checks_since += 1;
+        }
         if last <= tolerance && moments_met {
             Acceptance::Done
-        } else if stalled >= 3 {
+        } else if checks_since >= 3 && iteration >= improved_at + STALL {
+            // The largest residuals stopped falling while the 2-norm kept falling: what is
+            // left sits on a few rows that more iterations do not reach.
             Acceptance::GiveUp
         } else {
             // GMRES watches the 2-norm; ask for the next check where the 2-norm would put
@@ -129,7 +143,7 @@ pub fn solve_iterative<const D: usize>(
         }
     };
     let mut report = |it: usize, estimate: f64| {
-        progress(IterativeProgress::Iteration {
+        (progress.borrow_mut())(IterativeProgress::Iteration {
             iteration: it,
             estimate: estimate / hmax,
         });
@@ -139,10 +153,6 @@ pub fn solve_iterative<const D: usize>(
         max_iterations: options.max_iterations,
     };
     let end = fgmres(&b, &limits, &apply, &precondition, &mut accept, &mut report);
-    progress(IterativeProgress::Checked {
-        iteration: end.iterations,
-        residual: last,
-    });
     // Stopped short of the tolerance (a tenth of the limit by default) but within the limit:
     // as good as a dense solve would have been allowed to be.
     let good_enough = last <= settings.max_residual;
@@ -174,20 +184,63 @@ pub fn solve_iterative<const D: usize>(
     )
 }
 
-/// out = [Φ + Λ, P; Pᵀ, 0] x, normalized, by direct sums on every core.
+/// Centres per block of a product: each block's sum is plain, the blocks' sums are added with
+/// compensation, so rounding grows with the block, not with K.
+const BLOCK: usize = 2048;
+
+/// out = [Φ + Λ, P; Pᵀ, 0] x, normalized, by direct sums on every core (the vectorized
+/// evaluator over blocks of centres, the blocks summed with Neumaier's compensation: the
+/// iteration can reduce the residual only as far as the products are exact).
 fn apply_system<const D: usize>(system: &System<D>, x: &[f64], out: &mut [f64]) {
+    use rayon::prelude::*;
     let points = system.normalized_points();
     let k = points.len();
     let (w, c) = x.split_at(k);
-    let linear: [f64; D] = core::array::from_fn(|d| c[d + 1]);
-    let evaluated = InterpolantView::new(system.kernel(), points, w, c[0], linear)
-        .and_then(|f| f.par_values(points, &mut out[..k]));
-    if evaluated.is_err() {
+    let kernel = system.kernel();
+    let ok = out[..k]
+        .par_chunks_mut(256)
+        .zip(points.par_chunks(256))
+        .enumerate()
+        .all(|(chunk, (o, targets))| {
+            let mut part = vec![0.0; targets.len()];
+            let mut compensation = vec![0.0; targets.len()];
+            o.fill(0.0);
+            for start in (0..k).step_by(BLOCK) {
+                let end = (start + BLOCK).min(k);
+                let block = InterpolantView::new(
+                    kernel,
+                    &points[start..end],
+                    &w[start..end],
+                    0.0,
+                    [0.0; D],
+                );
+                if block.and_then(|f| f.values(targets, &mut part)).is_err() {
+                    return false;
+                }
+                for ((sum, comp), &term) in o.iter_mut().zip(compensation.iter_mut()).zip(&part) {
+                    let t = *sum + term;
+                    *comp += if sum.abs() >= term.abs() {
+                        (*sum - t) + term
+                    } else {
+                        (term - t) + *sum
+                    };
+                    *sum = t;
+                }
+            }
+            for (i, (v, comp)) in o.iter_mut().zip(&compensation).enumerate() {
+                let row = chunk * 256 + i;
+                let p = &points[row];
+                let mut affine = c[0];
+                for d in 0..D {
+                    affine += c[d + 1] * p[d];
+                }
+                *v += comp + affine + system.normalized_smoothing(row) * w[row];
+            }
+            true
+        });
+    if !ok {
         out.fill(f64::NAN);
         return;
-    }
-    for (i, (o, wi)) in out[..k].iter_mut().zip(w).enumerate() {
-        *o += system.normalized_smoothing(i) * wi;
     }
     let g = &mut out[k..];
     g.fill(0.0);

@@ -199,3 +199,17 @@ fn a_flat_patch_or_a_tiny_system_still_solves() {
     );
     assert!(d < 1e-8, "{d:e}");
 }
+
+#[test]
+fn a_duplicate_among_a_hundred_thousand_points_is_named_by_index() {
+    let mut cs = scattered(100_000, 21);
+    cs[77_777].position = cs[31_337].position;
+    cs[77_777].value = cs[31_337].value;
+    cs[77_777].kind = cs[31_337].kind;
+    match rbf_solve::fit(&cs, &FitSettings::default()) {
+        Err(FitError::Coincident { first, second, .. }) => {
+            assert_eq!((first.constraint, second.constraint), (31_337, 77_777));
+        }
+        other => panic!("expected Coincident, got {other:?}"),
+    }
+}
