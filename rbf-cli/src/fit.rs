@@ -131,6 +131,7 @@ enum SolverArg {
 
 pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Failure> {
     let source = args.input.display().to_string();
+    refuse_cloud_too_large(args, &source)?;
     let cloud = read_cloud(&args.input, &source)?;
     let text = match cloud {
         Some(_) => String::new(),
@@ -253,6 +254,40 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
         2 => job.run::<2>(),
         _ => job.run::<3>(),
     }
+}
+
+/// Refuses a point cloud whose header declares more points than memory can take, for the
+/// method that would fit them, before the file is read.
+fn refuse_cloud_too_large(args: &FitArgs, source: &str) -> Result<(), Failure> {
+    let Some((points, columns)) =
+        rbf_mesh::declared_cloud_size(&args.input).map_err(|e| Failure::mesh(&e))?
+    else {
+        return Ok(());
+    };
+    let points = usize::try_from(points).unwrap_or(usize::MAX);
+    // An oriented point gives two rows, a valued one (.npy N × 4) one.
+    let rows = points.saturating_mul(if columns == 4 { 1 } else { 2 });
+    let greedy = args.greedy || args.method == MethodArg::Greedy;
+    let checked = if greedy {
+        // The greedy fit keeps every constraint (about 200 bytes each) and its budget's system.
+        let budget = args.max_centres.unwrap_or(5000) as usize;
+        rbf_solve::check_fits(budget.min(points).saturating_mul(2), 1).and_then(|()| {
+            let bytes = (points as u64).saturating_mul(200);
+            match rbf_solve::memory_budget() {
+                Some(available) if bytes > available => Err(rbf_core::FitError::TooLarge {
+                    rows,
+                    bytes,
+                    available: Some(available),
+                }),
+                _ => Ok(()),
+            }
+        })
+    } else if args.method == MethodArg::Dense || rows <= rbf_solve::DENSE_LIMIT {
+        rbf_solve::check_fits(rows.saturating_add(4), 1)
+    } else {
+        rbf_solve::check_iterative_fits(rows, 3, &IterativeOptions::default())
+    };
+    checked.map_err(|e| Failure::fit(source, &e))
 }
 
 /// What kind of file `rbf fit` reads its constraints from.

@@ -1634,3 +1634,64 @@ fn a_scan_like_cloud_with_holes_closes_with_its_topology() {
         assert!(text.contains("watertight: yes"), "{name}: {text}");
     }
 }
+
+#[test]
+fn a_cloud_too_large_for_memory_is_refused_from_its_header() {
+    // A binary PLY whose header promises 10⁹ oriented points, and a .npy of 10¹⁰ rows: refused
+    // at once (exit 3) with what they need, without reading (there is nothing to read).
+    let dir = tempfile::tempdir().unwrap();
+    let ply = dir.path().join("huge.ply");
+    let mut bytes = binary_ply(&[]);
+    let header = String::from_utf8(bytes.clone()).unwrap();
+    bytes = header
+        .replace("element vertex 0", "element vertex 1000000000")
+        .into_bytes();
+    std::fs::write(&ply, bytes).unwrap();
+    let npy = dir.path().join("huge.npy");
+    let text = format!(
+        "{:<117}\n",
+        "{'descr': '<f8', 'fortran_order': False, 'shape': (10000000000, 6), }"
+    );
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(text.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(text.as_bytes());
+    std::fs::write(&npy, bytes).unwrap();
+    for (file, extra) in [
+        (&ply, &[][..]),
+        (&npy, &[][..]),
+        (&ply, &["--method", "greedy"][..]),
+    ] {
+        let mut args = vec!["fit", file.to_str().unwrap(), "-o", "/dev/null"];
+        args.extend_from_slice(extra);
+        let o = rbf(&args, None);
+        assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+        assert!(stderr(&o).contains("MiB"), "{}", stderr(&o));
+    }
+}
+
+#[test]
+fn bad_scans_are_refused_naming_the_culprit() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut cloud: Vec<([f64; 3], [f64; 3])> = rbf_core::shapes::fibonacci_sphere(50)
+        .into_iter()
+        .map(|p| (p, p))
+        .collect();
+    cloud[17].0[1] = f64::NAN;
+    let ply = dir.path().join("nan.ply");
+    std::fs::write(&ply, binary_ply(&cloud)).unwrap();
+    let o = rbf(&["fit", ply.to_str().unwrap(), "-o", "/dev/null"], None);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("nan.ply") && stderr(&o).contains("vertex 17 has a coordinate"),
+        "{}",
+        stderr(&o)
+    );
+    // A binary PLY cut in the middle of a vertex.
+    cloud[17].0[1] = 0.5;
+    let bytes = binary_ply(&cloud);
+    let cut = dir.path().join("cut.ply");
+    std::fs::write(&cut, &bytes[..bytes.len() - 30]).unwrap();
+    let o = rbf(&["fit", cut.to_str().unwrap(), "-o", "/dev/null"], None);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("cut.ply"), "{}", stderr(&o));
+}

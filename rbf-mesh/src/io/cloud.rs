@@ -16,6 +16,50 @@ pub struct PointCloud {
     pub normals: Option<Vec<[f64; 3]>>,
 }
 
+/// How many points a point cloud file declares and how many numbers each carries, read from
+/// its header alone (its first 64 KiB), so that a cloud too large for memory can be refused
+/// before it is read. `None` for a file that is not `.ply` or `.npy`; for a PLY the numbers are
+/// 6 when the vertices have `nx ny nz`, else 3.
+///
+/// ```
+/// let dir = std::env::temp_dir().join("rbf-declared-cloud-doc");
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let path = dir.join("scan.ply");
+/// // A header that promises 10⁹ oriented points, and no data.
+/// std::fs::write(&path, "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\n\
+///     property float x\nproperty float y\nproperty float z\nproperty float nx\n\
+///     property float ny\nproperty float nz\nend_header\n").unwrap();
+/// assert_eq!(rbf_mesh::declared_cloud_size(&path).unwrap(), Some((1_000_000_000, 6)));
+/// ```
+pub fn declared_cloud_size(path: &Path) -> Result<Option<(u64, usize)>, MeshError> {
+    use std::io::Read;
+    let kind = extension(path);
+    if !matches!(kind.as_deref(), Some("ply" | "npy")) {
+        return Ok(None);
+    }
+    let io = |source| MeshError::Io {
+        file: path.into(),
+        source,
+    };
+    let mut prefix = Vec::new();
+    std::fs::File::open(path)
+        .map_err(io)?
+        .take(64 << 10)
+        .read_to_end(&mut prefix)
+        .map_err(io)?;
+    if kind.as_deref() == Some("ply") {
+        let points = ply::vertex_count(path, &prefix)?;
+        let text = String::from_utf8_lossy(&prefix);
+        let normals = ["nx", "ny", "nz"]
+            .iter()
+            .all(|n| text.lines().any(|l| l.split_whitespace().last() == Some(n)));
+        Ok(Some((points, if normals { 6 } else { 3 })))
+    } else {
+        let h = npy::header(path, &prefix)?;
+        Ok(Some((h.rows as u64, h.cols)))
+    }
+}
+
 /// Reads a point cloud (`.ply` or `.npy`, by extension).
 ///
 /// ```no_run

@@ -7,7 +7,7 @@ mod obj;
 mod ply;
 mod stl;
 
-pub use cloud::{PointCloud, read_point_cloud, read_point_cloud_bytes};
+pub use cloud::{PointCloud, declared_cloud_size, read_point_cloud, read_point_cloud_bytes};
 pub use npy::{Matrix, read_npy_matrix};
 
 use std::path::Path;

@@ -16,22 +16,19 @@ pub struct Matrix {
     pub data: Vec<f64>,
 }
 
-/// Reads a two-dimensional `.npy` array of floats; `path` names it in errors.
-///
-/// ```
-/// // numpy.save of [[1, 2, 3], [4, 5, 6]] as float64.
-/// let header = "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }";
-/// let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
-/// let padded = format!("{header:<117}\n");
-/// bytes.extend_from_slice(&(padded.len() as u16).to_le_bytes());
-/// bytes.extend_from_slice(padded.as_bytes());
-/// for v in [1.0f64, 2.0, 3.0, 4.0, 5.0, 6.0] {
-///     bytes.extend_from_slice(&v.to_le_bytes());
-/// }
-/// let m = rbf_mesh::read_npy_matrix("points.npy".as_ref(), &bytes).unwrap();
-/// assert_eq!((m.rows, m.cols, m.data[5]), (2, 3, 6.0));
-/// ```
-pub fn read_npy_matrix(path: &Path, bytes: &[u8]) -> Result<Matrix, MeshError> {
+/// The numbers' layout and where they start, from the header of an `.npy` file (`bytes` may be
+/// the file's first bytes only).
+pub(super) struct Header {
+    little: bool,
+    size: usize,
+    fortran: bool,
+    pub(super) rows: usize,
+    pub(super) cols: usize,
+    body: usize,
+}
+
+/// Reads the header of a two-dimensional float64 or float32 array.
+pub(super) fn header(path: &Path, bytes: &[u8]) -> Result<Header, MeshError> {
     let bad = |offset: usize, message: String| MeshError::Parse {
         file: path.into(),
         location: Location::Byte(offset as u64),
@@ -93,7 +90,45 @@ pub fn read_npy_matrix(path: &Path, bytes: &[u8]) -> Result<Matrix, MeshError> {
             format!("an array of shape {shape:?}: give a two-dimensional array, one point a row"),
         ));
     };
-    let body = start + header_len;
+    Ok(Header {
+        little,
+        size,
+        fortran,
+        rows,
+        cols,
+        body: start + header_len,
+    })
+}
+
+/// Reads a two-dimensional `.npy` array of floats; `path` names it in errors.
+///
+/// ```
+/// // numpy.save of [[1, 2, 3], [4, 5, 6]] as float64.
+/// let header = "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }";
+/// let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+/// let padded = format!("{header:<117}\n");
+/// bytes.extend_from_slice(&(padded.len() as u16).to_le_bytes());
+/// bytes.extend_from_slice(padded.as_bytes());
+/// for v in [1.0f64, 2.0, 3.0, 4.0, 5.0, 6.0] {
+///     bytes.extend_from_slice(&v.to_le_bytes());
+/// }
+/// let m = rbf_mesh::read_npy_matrix("points.npy".as_ref(), &bytes).unwrap();
+/// assert_eq!((m.rows, m.cols, m.data[5]), (2, 3, 6.0));
+/// ```
+pub fn read_npy_matrix(path: &Path, bytes: &[u8]) -> Result<Matrix, MeshError> {
+    let bad = |offset: usize, message: String| MeshError::Parse {
+        file: path.into(),
+        location: Location::Byte(offset as u64),
+        message,
+    };
+    let Header {
+        little,
+        size,
+        fortran,
+        rows,
+        cols,
+        body,
+    } = header(path, bytes)?;
     let count = rows.checked_mul(cols);
     let expected = count.and_then(|c| c.checked_mul(size));
     if expected != Some(bytes.len().saturating_sub(body)) {

@@ -206,6 +206,15 @@ fn header(path: &Path, bytes: &[u8]) -> Result<(Format, Vec<Element>, usize, usi
     Ok((format, elements, pos, line))
 }
 
+/// The number of vertices the header declares (`bytes` may be the file's first bytes only).
+pub(super) fn vertex_count(path: &Path, bytes: &[u8]) -> Result<u64, MeshError> {
+    let (_, elements, _, _) = header(path, bytes)?;
+    Ok(elements
+        .iter()
+        .find(|e| e.name == "vertex")
+        .map_or(0, |e| e.count))
+}
+
 pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<Parts, MeshError> {
     let (format, elements, start, line) = header(path, bytes)?;
     let mut body = Body {
@@ -244,8 +253,9 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<Parts, MeshError> {
         if is_vertex {
             positions.reserve(e.count as usize);
         }
-        for _ in 0..e.count {
+        for index in 0..e.count {
             let mut p = [f64::NAN; 3];
+            let mut given = [false; 3];
             let mut n = [0.0; 3];
             for prop in &e.properties {
                 match prop {
@@ -253,9 +263,9 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<Parts, MeshError> {
                         let v = body.read(*s)?;
                         if is_vertex {
                             match name.as_str() {
-                                "x" => p[0] = v,
-                                "y" => p[1] = v,
-                                "z" => p[2] = v,
+                                "x" => (p[0], given[0]) = (v, true),
+                                "y" => (p[1], given[1]) = (v, true),
+                                "z" => (p[2], given[2]) = (v, true),
                                 "nx" => n[0] = v,
                                 "ny" => n[1] = v,
                                 "nz" => n[2] = v,
@@ -288,8 +298,13 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<Parts, MeshError> {
                 }
             }
             if is_vertex {
-                if p.iter().any(|v| v.is_nan()) {
+                if !given.iter().all(|&g| g) {
                     return Err(body.error("a vertex without x, y and z"));
+                }
+                if !p.iter().chain(&n).all(|v| v.is_finite()) {
+                    return Err(body.error(format!(
+                        "vertex {index} has a coordinate or normal that is not a finite number"
+                    )));
                 }
                 positions.push(p);
                 if has_normals {
