@@ -78,7 +78,8 @@ pub struct Solution<'a> {
 
 impl<const D: usize> System<D> {
     /// Maps a normalized solution back to an interpolant in the caller's coordinates, measures
-    /// its residual at every row (on every core with the `rayon` feature) and accepts it only
+    /// its residual at every row (on every core, with compensated sums, with the `rayon`
+    /// feature) and accepts it only
     /// if the residual is within `settings.max_residual`: a fit is an honest one or an error.
     ///
     /// ```
@@ -114,7 +115,7 @@ impl<const D: usize> System<D> {
         let interpolant = self.to_interpolant(weights, polynomial);
         let mut fx = alloc::vec![0.0; self.rows()];
         #[cfg(feature = "rayon")]
-        let evaluated = interpolant.view().par_values(self.points(), &mut fx);
+        let evaluated = interpolant.view().par_values_compensated(self.points(), &mut fx);
         #[cfg(not(feature = "rayon"))]
         let evaluated = interpolant.view().values(self.points(), &mut fx);
         if evaluated.is_err() {

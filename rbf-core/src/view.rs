@@ -93,7 +93,7 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
     }
 
     #[inline(always)]
-    fn affine(&self, x: &[T; D]) -> T {
+    pub(crate) fn affine(&self, x: &[T; D]) -> T {
         let mut v = self.constant;
         for d in 0..D {
             v += self.linear[d] * x[d];
