@@ -220,6 +220,132 @@ fn eval_checks_the_points_dimension() {
     );
 }
 
+/// A version-1 `.npy` file: `descr` numbers of `shape` (`fortran` order or C), raw `body`.
+fn npy_file(descr: &str, fortran: bool, shape: &str, body: &[u8]) -> Vec<u8> {
+    let order = if fortran { "True" } else { "False" };
+    let header = format!("{{'descr': '{descr}', 'fortran_order': {order}, 'shape': {shape}, }}");
+    let padded = format!("{header:<117}\n");
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(padded.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(padded.as_bytes());
+    bytes.extend_from_slice(body);
+    bytes
+}
+
+/// The header's shape and the float64 numbers of an `.npy` file that rbf wrote.
+fn read_npy_f64(bytes: &[u8]) -> (String, Vec<f64>) {
+    let len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    let header = std::str::from_utf8(&bytes[10..10 + len]).unwrap();
+    assert!(header.contains("'descr': '<f8'"), "{header}");
+    assert!(header.contains("'fortran_order': False"), "{header}");
+    let shape = header.split("'shape': ").nth(1).unwrap();
+    let shape = shape[..=shape.find(')').unwrap()].to_string();
+    let data = bytes[10 + len..]
+        .chunks_exact(8)
+        .map(|b| f64::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    (shape, data)
+}
+
+#[test]
+fn eval_reads_and_writes_npy() {
+    let dir = tempfile::tempdir().unwrap();
+    let (model, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &["-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let points = [
+        [0.0, 0.0, 0.0],
+        [0.57735, 0.57735, 0.57735],
+        [3.0, 0.5, -0.25],
+    ];
+    // float32, Fortran order: the column of x first.
+    let mut body = Vec::new();
+    for d in 0..3 {
+        for p in &points {
+            body.extend_from_slice(&(p[d] as f32).to_le_bytes());
+        }
+    }
+    let input = dir.path().join("p.npy");
+    std::fs::write(&input, npy_file("<f4", true, "(3, 3)", &body)).unwrap();
+    let text: String = points
+        .iter()
+        .map(|p| {
+            let x = p.map(|v| f64::from(v as f32));
+            format!("{:?} {:?} {:?}\n", x[0], x[1], x[2])
+        })
+        .collect();
+    let expected = rbf(
+        &["eval", model.to_str().unwrap(), "-", "--gradient"],
+        Some(&text),
+    );
+    assert!(expected.status.success(), "{}", stderr(&expected));
+    let expected: Vec<f64> = String::from_utf8(expected.stdout)
+        .unwrap()
+        .split_whitespace()
+        .map(|t| t.parse().unwrap())
+        .collect();
+
+    let out = dir.path().join("v.npy");
+    let (m, i, o) = (
+        model.to_str().unwrap(),
+        input.to_str().unwrap(),
+        out.to_str().unwrap(),
+    );
+    let run = rbf(&["eval", m, i, "-o", o], None);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let (shape, values) = read_npy_f64(&std::fs::read(&out).unwrap());
+    assert_eq!(shape, "(3,)");
+    for (k, v) in values.iter().enumerate() {
+        assert_eq!(*v, expected[4 * k], "value {k}");
+    }
+    assert!((values[0] - 1.0).abs() < 1e-6 && values[2] < 0.0);
+
+    let run = rbf(&["eval", m, i, "-o", o, "--gradient"], None);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let (shape, rows) = read_npy_f64(&std::fs::read(&out).unwrap());
+    assert_eq!(shape, "(3, 4)");
+    assert_eq!(rows, expected);
+
+    // Text out when the name does not end in .npy.
+    let txt = dir.path().join("v.txt");
+    let run = rbf(&["eval", m, i, "-o", txt.to_str().unwrap()], None);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let written: Vec<f64> = std::fs::read_to_string(&txt)
+        .unwrap()
+        .split_whitespace()
+        .map(|t| t.parse().unwrap())
+        .collect();
+    assert_eq!(written, values);
+
+    // The wrong number of columns, NaN and a cut file are refused, naming the file.
+    let bad = dir.path().join("bad.npy");
+    let b = bad.to_str().unwrap();
+    let two: Vec<u8> = [1.0f64, 2.0].iter().flat_map(|v| v.to_le_bytes()).collect();
+    std::fs::write(&bad, npy_file("<f8", false, "(1, 2)", &two)).unwrap();
+    let run = rbf(&["eval", m, b], None);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("bad.npy: an array of shape (1, 2); the model is 3D"),
+        "{}",
+        stderr(&run)
+    );
+    let nan: Vec<u8> = [0.0f64, 0.0, 0.0, 1.0, f64::NAN, 0.0]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    std::fs::write(&bad, npy_file("<f8", false, "(2, 3)", &nan)).unwrap();
+    let run = rbf(&["eval", m, b], None);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("point 1 has a coordinate that is not a finite number"),
+        "{}",
+        stderr(&run)
+    );
+    std::fs::write(&bad, npy_file("<f8", false, "(2, 3)", &nan[..20])).unwrap();
+    let run = rbf(&["eval", m, b], None);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("bad.npy"), "{}", stderr(&run));
+}
+
 #[test]
 fn usage_errors_exit_1_and_help_teaches() {
     let o = rbf(&["fit"], None);

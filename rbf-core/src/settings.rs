@@ -14,9 +14,11 @@ use crate::{Kernel, NormalOffset};
 pub struct FitSettings {
     /// The kernel; `None` picks r² log r in 2D and r³ in 3D.
     pub kernel: Option<Kernel>,
-    /// Global regularization λ ≥ 0 added to every diagonal entry of the kernel block (Yngve &
-    /// Turk 2002, §6.3). 0 interpolates exactly; larger values trade exactness for smoothness. The
-    /// same quantity as scipy's `RBFInterpolator(smoothing=λ)`.
+    /// Global regularization λ ≥ 0 on every diagonal entry of the kernel block (Yngve & Turk
+    /// 2002, §6.3), with the sign that makes the block more definite: +λ for r³ and r² log r,
+    /// −λ for r (Carr et al. 2001 subtract it for the biharmonic r). 0 interpolates exactly;
+    /// larger values trade exactness for smoothness. The same quantity as scipy's
+    /// `RBFInterpolator(smoothing=λ)`, whose linear kernel is −r.
     pub lambda: f64,
     /// The default distance from a normal constraint's point to its offset point.
     pub normal_offset: NormalOffset,

@@ -34,7 +34,7 @@ pub struct System<const D: usize> {
     /// Points in normalized coordinates.
     normalized: Vec<[f64; D]>,
     values: Vec<f64>,
-    /// λ + λᵢ in the caller's units.
+    /// σ(λ + λᵢ) in the caller's units, σ the kernel's [`Kernel::definiteness`].
     smoothing: Vec<f64>,
     sources: Vec<RowSource>,
     origin: [f64; D],
@@ -66,8 +66,11 @@ impl<const D: usize> System<D> {
         let mut values = Vec::with_capacity(rows);
         let mut smoothing = Vec::with_capacity(rows);
         let mut sources = Vec::with_capacity(rows);
+        // Smoothing makes the kernel block more definite: +λ for r³ and r² log r, −λ for r
+        // (scipy's `smoothing` with its kernel −r).
+        let sign = settings.kernel_for(D).definiteness();
         for (i, c) in constraints.iter().enumerate() {
-            let lambda = settings.lambda + c.smoothing;
+            let lambda = sign * (settings.lambda + c.smoothing);
             let here = RowSource {
                 constraint: i,
                 offset_point: false,

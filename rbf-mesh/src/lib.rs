@@ -42,7 +42,7 @@ pub use check::MeshReport;
 pub use distance::{signed_distance, squared_distance_transform};
 pub use error::{Location, MeshError};
 pub use io::{
-    Matrix, PointCloud, declared_cloud_size, mesh_bytes, read_mesh, read_mesh_bytes,
+    Matrix, PointCloud, declared_cloud_size, mesh_bytes, npy_f64_bytes, read_mesh, read_mesh_bytes,
     read_npy_matrix, read_point_cloud, read_point_cloud_bytes, write_mesh,
 };
 pub use mesh::TriMesh;

@@ -133,18 +133,8 @@ impl Volume<f32> {
     /// assert_eq!((bytes.len() - 24 * 4) % 64, 0);
     /// ```
     pub fn to_npy(&self) -> Vec<u8> {
-        let [nx, ny, nz] = self.shape;
-        let mut header =
-            format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({nx}, {ny}, {nz}), }}");
-        // Magic (6) + version (2) + length (2) + header, padded with spaces to a multiple of 64
-        // and ended by a newline.
-        let unpadded = 10 + header.len() + 1;
-        header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
-        header.push('\n');
-        let mut out = Vec::with_capacity(10 + header.len() + 4 * self.data.len());
-        out.extend_from_slice(b"\x93NUMPY\x01\x00");
-        out.extend_from_slice(&(header.len() as u16).to_le_bytes());
-        out.extend_from_slice(header.as_bytes());
+        let mut out = crate::io::npy_preamble("<f4", &self.shape);
+        out.reserve(4 * self.data.len());
         for v in &self.data {
             out.extend_from_slice(&v.to_le_bytes());
         }

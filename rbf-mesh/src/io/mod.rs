@@ -8,7 +8,8 @@ mod ply;
 mod stl;
 
 pub use cloud::{PointCloud, declared_cloud_size, read_point_cloud, read_point_cloud_bytes};
-pub use npy::{Matrix, read_npy_matrix};
+pub(crate) use npy::npy_preamble;
+pub use npy::{Matrix, npy_f64_bytes, read_npy_matrix};
 
 use std::path::Path;
 

@@ -1,5 +1,5 @@
-//! NumPy `.npy` matrices in: two-dimensional arrays of `float64` or `float32`, either byte
-//! order, C or Fortran order (what `numpy.save` writes for point sets).
+//! NumPy `.npy` files: two-dimensional arrays of `float64` or `float32` in, either byte order,
+//! C or Fortran order (what `numpy.save` writes for point sets); arrays of any shape out.
 
 use std::path::Path;
 
@@ -158,4 +158,42 @@ pub fn read_npy_matrix(path: &Path, bytes: &[u8]) -> Result<Matrix, MeshError> {
             .collect();
     }
     Ok(Matrix { rows, cols, data })
+}
+
+/// The first bytes of a version-1 `.npy` file: magic, header length and the header of an
+/// array of `descr` numbers (`<f8`, `<f4`) of `shape` in C order, padded to 64 bytes.
+pub(crate) fn npy_preamble(descr: &str, shape: &[usize]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+    // A one-dimensional shape is written `(n,)`.
+    let shape = match dims.len() {
+        1 => format!("({},)", dims[0]),
+        _ => format!("({})", dims.join(", ")),
+    };
+    let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    // Magic (6) + version (2) + length (2) + header, padded with spaces to a multiple of 64
+    // and ended by a newline.
+    let unpadded = 10 + header.len() + 1;
+    header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
+    header.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    out
+}
+
+/// The bytes of an `.npy` file holding `data` (little-endian float64, C order) as an array of
+/// `shape`; `numpy.load` reads it.
+///
+/// ```
+/// let bytes = rbf_mesh::npy_f64_bytes(&[2, 3], &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+/// let m = rbf_mesh::read_npy_matrix("out.npy".as_ref(), &bytes).unwrap();
+/// assert_eq!((m.rows, m.cols, m.data[4]), (2, 3, 5.0));
+/// ```
+pub fn npy_f64_bytes(shape: &[usize], data: &[f64]) -> Vec<u8> {
+    let mut out = npy_preamble("<f8", shape);
+    out.reserve(8 * data.len());
+    for v in data {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    out
 }
