@@ -1,0 +1,263 @@
+"""Implicit surfaces from constraints and meshes; model files; voxels."""
+
+from __future__ import annotations
+
+import os
+from typing import Any, NamedTuple, Optional, Tuple, Union
+
+import numpy as np
+
+from . import _native
+from ._native import Model, RbfError
+
+ArrayLike = Any
+
+_BOUNDARY, _INTERIOR, _EXTERIOR, _NORMAL = 0, 1, 2, 3
+
+
+class RbfFileNotFoundError(RbfError, FileNotFoundError):
+    """A model or mesh file that does not exist (both an ``RbfError`` and a
+    ``FileNotFoundError``)."""
+
+
+def _points_and_values(arg: Any, default: float, name: str) -> Tuple[np.ndarray, np.ndarray]:
+    """``points`` or ``(points, values)`` -> arrays; values default to ``default``."""
+    if isinstance(arg, tuple):
+        if len(arg) != 2:
+            raise RbfError(f"{name} must be points or a pair (points, values)")
+        points = np.asarray(arg[0], dtype=np.float64)
+        values = np.broadcast_to(np.asarray(arg[1], dtype=np.float64), (len(points),))
+    else:
+        points = np.asarray(arg, dtype=np.float64)
+        values = np.full(len(points), default)
+    if points.ndim != 2:
+        raise RbfError(f"{name}: points must have shape (n, 2) or (n, 3), not {points.shape}")
+    return points, values
+
+
+def fit(
+    boundary: Optional[ArrayLike] = None,
+    interior: Optional[Union[ArrayLike, Tuple[ArrayLike, ArrayLike]]] = None,
+    exterior: Optional[Union[ArrayLike, Tuple[ArrayLike, ArrayLike]]] = None,
+    normals: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+    *,
+    kernel: Optional[str] = None,
+    smoothing: float = 0.0,
+    offset: Optional[float] = None,
+    method: str = "auto",
+    max_residual: float = 1e-6,
+    allow_unconverged: bool = False,
+) -> Model:
+    """Fits an implicit function to constraints of every kind (Turk & O'Brien 2002, §4).
+
+    f is 0 on the surface, positive inside and negative outside:
+
+    - ``boundary``: (n, dim) points on the surface (f = 0);
+    - ``interior``: points inside, or ``(points, values)`` with values > 0 (default 1);
+    - ``exterior``: points outside, or ``(points, values)`` with values < 0 (default -1);
+    - ``normals``: ``(points, normals)``, points on the surface with outward normals
+      (f = 0 there and f = 1 at ``offset`` inside, against the normal).
+
+    ``kernel``: ``"cubic"`` (r³, default in 3D), ``"thin_plate_spline"`` (default in 2D) or
+    ``"linear"``; ``smoothing``: λ ≥ 0 (0 interpolates exactly); ``offset``: the normal
+    constraints' offset distance (default: 1% of the box's longest side); ``method``:
+    ``"auto"`` (dense below 5000 rows, iterative above), ``"dense"`` or ``"fast"``;
+    ``max_residual``: the largest accepted max|f(cᵢ) − hᵢ| / max|hᵢ|.
+
+    >>> import rbfsurf
+    >>> m = rbfsurf.fit(boundary=[[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]],
+    ...                 interior=[[0, 0, 0]], exterior=([[3, 3, 3]], -2.0))
+    >>> round(float(m([[0, 0, 0]])[0]), 9), round(float(m([[3, 3, 3]])[0]), 9)
+    (1.0, -2.0)
+    """
+    parts = []
+    if boundary is not None:
+        p = np.asarray(boundary, dtype=np.float64)
+        if p.ndim != 2:
+            raise RbfError(f"boundary: points must have shape (n, 2) or (n, 3), not {p.shape}")
+        parts.append((p, np.zeros(len(p)), _BOUNDARY, None))
+    if interior is not None:
+        p, v = _points_and_values(interior, 1.0, "interior")
+        parts.append((p, v, _INTERIOR, None))
+    if exterior is not None:
+        p, v = _points_and_values(exterior, -1.0, "exterior")
+        parts.append((p, v, _EXTERIOR, None))
+    if normals is not None:
+        if not (isinstance(normals, tuple) and len(normals) == 2):
+            raise RbfError("normals must be a pair (points, normals)")
+        p = np.asarray(normals[0], dtype=np.float64)
+        n = np.asarray(normals[1], dtype=np.float64)
+        if p.ndim != 2 or n.shape != p.shape:
+            raise RbfError(
+                f"normals: points and normals must both have shape (n, dim), not {p.shape} and {n.shape}"
+            )
+        parts.append((p, np.ones(len(p)), _NORMAL, n))
+    if not parts:
+        raise RbfError("no constraints: give boundary, interior, exterior or normals")
+    dims = {p.shape[1] for p, _, _, _ in parts}
+    if len(dims) != 1:
+        raise RbfError(f"the constraints mix dimensions {sorted(dims)}")
+    points = np.concatenate([p for p, _, _, _ in parts])
+    values = np.concatenate([v for _, v, _, _ in parts])
+    kinds = np.concatenate([np.full(len(p), k, dtype=np.float64) for p, _, k, _ in parts])
+    all_normals = None
+    if normals is not None:
+        all_normals = np.concatenate(
+            [n if n is not None else np.zeros_like(p) for p, _, _, n in parts]
+        )
+    if not np.isscalar(smoothing) and np.ndim(smoothing) != 0:
+        raise RbfError("smoothing must be one number λ ≥ 0 (use RBFInterpolator for one per point)")
+    return _native._fit(
+        points,
+        kinds,
+        values,
+        all_normals,
+        0.0,
+        kernel=kernel,
+        lam=float(smoothing),
+        offset=offset,
+        method=method,
+        max_residual=max_residual,
+        allow_unconverged=allow_unconverged,
+    )
+
+
+def from_oriented_points(
+    points: ArrayLike,
+    normals: ArrayLike,
+    *,
+    kernel: Optional[str] = None,
+    smoothing: float = 0.0,
+    offset: Optional[float] = None,
+    method: str = "auto",
+    max_residual: float = 1e-6,
+    allow_unconverged: bool = False,
+) -> Model:
+    """The implicit surface through oriented points (a scan with normals, a mesh's vertices):
+    ``fit(normals=(points, normals), ...)``. Above 5000 rows (2500 points) the iterative
+    solver takes every point.
+
+    >>> import numpy as np, rbfsurf
+    >>> z = np.linspace(-0.95, 0.95, 60); t = 2.4 * np.arange(60)
+    >>> p = np.c_[np.sqrt(1 - z**2) * np.cos(t), np.sqrt(1 - z**2) * np.sin(t), z]
+    >>> m = rbfsurf.from_oriented_points(p, p)
+    >>> bool(abs(m(p)).max() < 1e-9)
+    True
+    """
+    return fit(
+        normals=(points, normals),
+        kernel=kernel,
+        smoothing=smoothing,
+        offset=offset,
+        method=method,
+        max_residual=max_residual,
+        allow_unconverged=allow_unconverged,
+    )
+
+
+def convert(
+    vertices: ArrayLike,
+    faces: ArrayLike,
+    *,
+    method: str = "iterative",
+    resolution: int = 128,
+    max_constraints: Optional[int] = None,
+    max_iterations: int = 30,
+    smoothing: float = 0.0,
+    offset: float = 0.01,
+    return_report: bool = False,
+) -> Union[Model, Tuple[Model, dict]]:
+    """A closed triangle mesh as an implicit surface, as ``rbf convert`` does.
+
+    ``method="iterative"`` (Yngve & Turk 2002): voxelize at ``resolution`` voxels along the
+    longest side, fit, measure the two-way error, add constraints where it is largest, repeat
+    (at most ``max_constraints``, default 5000, and ``max_iterations``). ``method="normals"``:
+    a normal constraint at every vertex (``max_constraints`` thins them evenly), ``offset`` a
+    fraction of the box. With ``return_report``, also a dict of the conversion's figures.
+    """
+    model, report = _native.convert(
+        vertices,
+        faces,
+        method=method,
+        resolution=resolution,
+        max_constraints=max_constraints,
+        max_iterations=max_iterations,
+        smoothing=smoothing,
+        offset=offset,
+    )
+    return (model, report) if return_report else model
+
+
+class VoxelGrid(NamedTuple):
+    """A volume: ``values[i, j, k]`` belongs to the voxel centred at
+    ``origin + voxel_size * (i, j, k)``."""
+
+    values: np.ndarray
+    origin: np.ndarray
+    voxel_size: float
+
+
+def voxelize(
+    vertices: ArrayLike,
+    faces: ArrayLike,
+    *,
+    resolution: int = 64,
+    supersampling: int = 4,
+    method: str = "auto",
+) -> VoxelGrid:
+    """The fraction of each voxel inside a closed mesh (float32, ``supersampling``³ samples
+    per voxel), ``resolution`` voxels along the box's longest side plus a margin.
+    ``method``: ``"rays"`` (closed meshes), ``"winding"`` (generalized winding numbers:
+    meshes with holes) or ``"auto"``.
+
+    >>> import rbfsurf
+    >>> v = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    >>> f = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
+    >>> g = rbfsurf.voxelize(v, f, resolution=16)
+    >>> abs(float(g.values.sum()) * g.voxel_size**3 - 1 / 6) < 0.01
+    True
+    """
+    values, origin, size = _native._voxelize(
+        vertices, faces, resolution=resolution, supersampling=supersampling, method=method
+    )
+    return VoxelGrid(values, np.asarray(origin), size)
+
+
+def signed_distance(
+    vertices: ArrayLike,
+    faces: ArrayLike,
+    *,
+    resolution: int = 64,
+    supersampling: int = 4,
+    method: str = "auto",
+) -> VoxelGrid:
+    """The signed distance to a closed mesh's surface at every voxel centre (float32, in the
+    mesh's units, positive inside), from its voxels by an exact distance transform."""
+    values, origin, size = _native._voxelize(
+        vertices,
+        faces,
+        resolution=resolution,
+        supersampling=supersampling,
+        method=method,
+        distance=True,
+    )
+    return VoxelGrid(values, np.asarray(origin), size)
+
+
+def loads(text: str) -> Model:
+    """A model from the JSON text of a model file."""
+    return Model.from_json(text)
+
+
+def load(path: Union[str, "os.PathLike[str]"]) -> Model:
+    """Reads a model file written by ``Model.save`` or ``rbf fit``."""
+    path = os.fspath(path)
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    except FileNotFoundError:
+        raise RbfFileNotFoundError(f"{path}: no such file") from None
+    try:
+        return Model.from_json(text)
+    except RbfError as e:
+        raise RbfError(f"{path}: {e}") from None

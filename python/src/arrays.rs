@@ -1,0 +1,159 @@
+//! NumPy in and out: any array-like of numbers becomes float64 without a copy when it already
+//! is one; results are NumPy arrays that own the vectors they were computed in.
+
+use std::borrow::Cow;
+
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::error::bad;
+
+/// `numpy.asarray(obj, dtype)`: a view of an array that already has the type, a converted copy
+/// otherwise (lists, other float widths, integers).
+fn as_array<'py>(obj: &Bound<'py, PyAny>, dtype: &str, name: &str) -> PyResult<Bound<'py, PyAny>> {
+    let py = obj.py();
+    let kwargs = PyDict::new(py);
+    kwargs.set_item("dtype", dtype)?;
+    py.import("numpy")?
+        .call_method("asarray", (obj,), Some(&kwargs))
+        .map_err(|e| {
+            bad(format!(
+                "{name}: cannot be read as an array of {dtype}: {e}"
+            ))
+        })
+}
+
+/// A float64 array of any shape, borrowed when possible.
+pub(crate) struct Floats<'py> {
+    array: PyReadonlyArrayDyn<'py, f64>,
+}
+
+impl<'py> Floats<'py> {
+    /// Reads `obj` (an array-like of numbers); `name` is the argument's name in errors.
+    pub(crate) fn new(obj: &Bound<'py, PyAny>, name: &str) -> PyResult<Self> {
+        let array = as_array(obj, "float64", name)?
+            .cast_into::<PyArrayDyn<f64>>()
+            .map_err(|_| bad(format!("{name}: not an array of numbers")))?
+            .try_readonly()
+            .map_err(|e| bad(format!("{name}: {e}")))?;
+        Ok(Self { array })
+    }
+
+    /// The shape.
+    pub(crate) fn shape(&self) -> Vec<usize> {
+        self.array.shape().to_vec()
+    }
+
+    /// The numbers in C order: the array's own memory when it is C-contiguous, a copy otherwise
+    /// (Fortran order, strided views).
+    pub(crate) fn values(&self) -> PyResult<Cow<'_, [f64]>> {
+        Ok(match self.array.as_slice() {
+            Ok(s) => Cow::Borrowed(s),
+            Err(_) => Cow::Owned(self.array.as_array().iter().copied().collect()),
+        })
+    }
+
+    /// The rows of an `(n, D)` array as points; an error naming `name` for another shape.
+    pub(crate) fn points<const D: usize>(&self, name: &str) -> PyResult<Cow<'_, [[f64; D]]>> {
+        let shape = self.shape();
+        if shape.len() != 2 || shape[1] != D {
+            return Err(bad(format!(
+                "{name} must have shape (n, {D}), not {}",
+                shape_text(&shape)
+            )));
+        }
+        Ok(match self.values()? {
+            Cow::Borrowed(s) => Cow::Borrowed(s.as_chunks::<D>().0),
+            Cow::Owned(v) => Cow::Owned(v.as_chunks::<D>().0.to_vec()),
+        })
+    }
+
+    /// A one-dimensional array of `n` numbers, or a scalar repeated `n` times.
+    pub(crate) fn per_row(&self, n: usize, name: &str) -> PyResult<Vec<f64>> {
+        let shape = self.shape();
+        let values = self.values()?;
+        match shape[..] {
+            [] => Ok(vec![values[0]; n]),
+            [m] if m == n => Ok(values.into_owned()),
+            _ => Err(bad(format!(
+                "{name} must be a number or have shape ({n},), not {}",
+                shape_text(&shape)
+            ))),
+        }
+    }
+}
+
+/// The second dimension of an `(n, 2)` or `(n, 3)` array, which decides the model's dimension.
+pub(crate) fn point_dimension(points: &Floats<'_>, name: &str) -> PyResult<usize> {
+    match points.shape()[..] {
+        [_, d @ (2 | 3)] => Ok(d),
+        ref s => Err(bad(format!(
+            "{name} must have shape (n, 2) or (n, 3): rbf fits curves in 2D and surfaces in 3D, not {}",
+            shape_text(s)
+        ))),
+    }
+}
+
+/// Triangles as vertex indices: an `(m, 3)` array of integers, checked against `vertices`.
+pub(crate) fn triangles(obj: &Bound<'_, PyAny>, vertices: usize) -> PyResult<Vec<[u32; 3]>> {
+    let array = as_array(obj, "int64", "faces")?
+        .cast_into::<PyArrayDyn<i64>>()
+        .map_err(|_| bad("faces: not an array of integers"))?;
+    let shape = array.shape().to_vec();
+    if shape.len() != 2 || shape[1] != 3 {
+        return Err(bad(format!(
+            "faces must have shape (m, 3), not {}",
+            shape_text(&shape)
+        )));
+    }
+    let flat: Vec<i64> = array
+        .try_readonly()
+        .map_err(|e| bad(format!("faces: {e}")))?
+        .as_array()
+        .iter()
+        .copied()
+        .collect();
+    if let Some(k) = flat
+        .iter()
+        .position(|&i| i < 0 || i as u64 >= vertices as u64)
+    {
+        return Err(bad(format!(
+            "faces: triangle {} uses vertex {}, but there are {vertices} vertices",
+            k / 3,
+            flat[k]
+        )));
+    }
+    Ok(flat
+        .chunks_exact(3)
+        .map(|t| [t[0] as u32, t[1] as u32, t[2] as u32])
+        .collect())
+}
+
+/// `(n, …)` as Python prints a shape.
+pub(crate) fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [n] => format!("({n},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// A NumPy array of `shape` owning `data` (C order).
+pub(crate) fn owned<'py, T: numpy::Element>(
+    py: Python<'py>,
+    data: Vec<T>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyAny>> {
+    let flat = PyArray1::from_vec(py, data);
+    if shape.len() == 1 {
+        return Ok(flat.into_any());
+    }
+    Ok(flat.reshape(shape)?.into_any())
+}

@@ -1,0 +1,201 @@
+//! Fits: constraints of every kind, given as arrays, to a `Model`.
+
+use pyo3::prelude::*;
+use rbf_core::{Constraint, FitSettings, Kernel, Model as CoreModel, NormalOffset, System};
+use rbf_solve::{IterativeOptions, SolveOptions};
+
+use crate::arrays::{Floats, point_dimension};
+use crate::error::bad;
+use crate::model::{IntoAnyModel, Model};
+
+/// Kind codes of `_fit`'s `kinds` (the Python layer assembles them).
+const BOUNDARY: u8 = 0;
+const INTERIOR: u8 = 1;
+const EXTERIOR: u8 = 2;
+const NORMAL: u8 = 3;
+
+/// How the system is solved.
+#[derive(Clone, Copy)]
+enum Method {
+    /// Dense up to `rbf_solve::DENSE_LIMIT` rows, iterative above.
+    Auto,
+    Dense,
+    Fast,
+}
+
+/// A kernel from scipy's name (or rbf's).
+pub(crate) fn kernel(name: Option<&str>) -> PyResult<Option<Kernel>> {
+    Ok(match name {
+        None => None,
+        Some("cubic") => Some(Kernel::Cubic),
+        Some("linear") => Some(Kernel::Linear),
+        Some("thin_plate_spline" | "thin-plate") => Some(Kernel::ThinPlate),
+        Some(other) => {
+            return Err(bad(format!(
+                "kernel must be \"cubic\", \"linear\" or \"thin_plate_spline\", not {other:?}"
+            )));
+        }
+    })
+}
+
+/// The whole fit of D-dimensional constraints, without the GIL.
+#[allow(clippy::too_many_arguments)]
+fn fit_in<const D: usize>(
+    py: Python<'_>,
+    positions: &Floats<'_>,
+    kinds: &[u8],
+    values: &[f64],
+    normals: Option<&Floats<'_>>,
+    smoothing: &[f64],
+    settings: FitSettings,
+    method: Method,
+    allow_unconverged: bool,
+) -> PyResult<Model>
+where
+    CoreModel<D>: IntoAnyModel,
+{
+    let points = positions.points::<D>("points")?;
+    let normals = normals.map(|n| n.points::<D>("normals")).transpose()?;
+    if let Some(n) = &normals
+        && n.len() != points.len()
+    {
+        return Err(bad(format!(
+            "normals has {} rows for {} points",
+            n.len(),
+            points.len()
+        )));
+    }
+    let mut constraints = Vec::with_capacity(points.len());
+    for (i, p) in points.iter().enumerate() {
+        let c = match kinds[i] {
+            BOUNDARY => Constraint::boundary(*p),
+            INTERIOR => Constraint::interior(*p, values[i]),
+            EXTERIOR => Constraint::exterior(*p, values[i]),
+            NORMAL => match &normals {
+                Some(n) => Constraint::normal(*p, n[i]).with_value(values[i]),
+                None => return Err(bad("normal constraints need normals")),
+            },
+            k => return Err(bad(format!("constraint {i}: unknown kind code {k}"))),
+        };
+        constraints.push(c.with_smoothing(smoothing[i]));
+    }
+    let fit = py.detach(|| match method {
+        Method::Auto => rbf_solve::fit(&constraints, &settings),
+        Method::Dense => {
+            rbf_solve::check_constraints_fit(&constraints)?;
+            let system = System::new(&constraints, &settings)?;
+            rbf_solve::solve(&system, &settings, &SolveOptions::default())
+        }
+        Method::Fast => {
+            let system = System::new(&constraints, &settings)?;
+            let options = IterativeOptions {
+                allow_unconverged,
+                ..Default::default()
+            };
+            rbf_solve::solve_iterative(&system, &settings, &options, |_| {})
+        }
+    });
+    let fit = fit.map_err(bad)?;
+    Ok(Model::new(CoreModel {
+        constraints,
+        settings,
+        interpolant: fit.interpolant,
+        report: Some(fit.report),
+    }))
+}
+
+/// The native fit behind ``rbfsurf.fit`` and ``RBFInterpolator``: one row of ``points`` per
+/// constraint, ``kinds`` 0 boundary, 1 interior, 2 exterior, 3 normal (then ``values`` is the
+/// value at the offset point and ``normals`` has the outward normal), ``smoothing`` λᵢ per
+/// constraint on top of the global ``lam``.
+#[pyfunction]
+#[pyo3(signature = (points, kinds, values, normals, smoothing, *, kernel=None, lam=0.0, offset=None, method="auto", max_residual=1e-6, allow_unconverged=false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn _fit(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    kinds: &Bound<'_, PyAny>,
+    values: &Bound<'_, PyAny>,
+    normals: Option<&Bound<'_, PyAny>>,
+    smoothing: &Bound<'_, PyAny>,
+    kernel: Option<&str>,
+    lam: f64,
+    offset: Option<f64>,
+    method: &str,
+    max_residual: f64,
+    allow_unconverged: bool,
+) -> PyResult<Model> {
+    let positions = Floats::new(points, "points")?;
+    let dim = point_dimension(&positions, "points")?;
+    let n = positions.shape()[0];
+    let kinds: Vec<u8> = Floats::new(kinds, "kinds")?
+        .per_row(n, "kinds")?
+        .iter()
+        .map(|&k| {
+            if (0.0..=3.0).contains(&k) {
+                k as u8
+            } else {
+                u8::MAX
+            }
+        })
+        .collect();
+    let values = Floats::new(values, "values")?.per_row(n, "values")?;
+    let smoothing = Floats::new(smoothing, "smoothing")?.per_row(n, "smoothing")?;
+    let normals = normals.map(|n| Floats::new(n, "normals")).transpose()?;
+    let method = match method {
+        "auto" => Method::Auto,
+        "dense" => Method::Dense,
+        "fast" => Method::Fast,
+        other => {
+            return Err(bad(format!(
+                "method must be \"auto\", \"dense\" or \"fast\", not {other:?}"
+            )));
+        }
+    };
+    if let Some(o) = offset
+        && !(o > 0.0 && o.is_finite())
+    {
+        return Err(bad(format!(
+            "offset must be a finite distance > 0, not {o}"
+        )));
+    }
+    if !(max_residual > 0.0) {
+        return Err(bad(format!("max_residual must be > 0, not {max_residual}")));
+    }
+    let settings = FitSettings {
+        kernel: self::kernel(kernel)?,
+        lambda: lam,
+        normal_offset: offset.map_or(NormalOffset::default(), NormalOffset::Absolute),
+        max_residual,
+        ..Default::default()
+    };
+    let go = |d| -> PyResult<Model> {
+        let normals = normals.as_ref();
+        if d == 2 {
+            fit_in::<2>(
+                py,
+                &positions,
+                &kinds,
+                &values,
+                normals,
+                &smoothing,
+                settings,
+                method,
+                allow_unconverged,
+            )
+        } else {
+            fit_in::<3>(
+                py,
+                &positions,
+                &kinds,
+                &values,
+                normals,
+                &smoothing,
+                settings,
+                method,
+                allow_unconverged,
+            )
+        }
+    };
+    go(dim)
+}

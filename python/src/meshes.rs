@@ -1,0 +1,180 @@
+//! Triangle meshes in and out: files, conversion to implicit surfaces, voxels and distances.
+
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rbf_convert::{
+    ConvertError, IterativeSettings, NormalSettings, convert_iterative, convert_normals,
+};
+use rbf_core::NormalOffset;
+use rbf_mesh::{TriMesh, VoxelMethod, VoxelSettings, signed_distance, voxelize};
+
+use crate::arrays::{Floats, owned, triangles};
+use crate::error::bad;
+use crate::model::Model;
+
+/// A `TriMesh` from an (n, 3) vertex array and an (m, 3) face array.
+fn mesh(vertices: &Bound<'_, PyAny>, faces: &Bound<'_, PyAny>) -> PyResult<TriMesh> {
+    let v = Floats::new(vertices, "vertices")?;
+    let positions = v.points::<3>("vertices")?.into_owned();
+    let tris = triangles(faces, positions.len())?;
+    TriMesh::new(positions, tris).map_err(bad)
+}
+
+/// Reads a mesh file (OBJ, PLY, STL): ``(vertices, faces)`` as (n, 3) float64 and (m, 3) int64
+/// arrays.
+#[pyfunction]
+pub(crate) fn read_mesh<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let mesh = py.detach(|| rbf_mesh::read_mesh(&path)).map_err(bad)?;
+    let (n, m) = (mesh.positions().len(), mesh.triangles().len());
+    let faces: Vec<i64> = mesh
+        .triangles()
+        .as_flattened()
+        .iter()
+        .map(|&i| i64::from(i))
+        .collect();
+    Ok((
+        owned(py, mesh.positions().as_flattened().to_vec(), &[n, 3])?,
+        owned(py, faces, &[m, 3])?,
+    ))
+}
+
+/// Writes ``(vertices, faces)`` as a mesh file; the extension (.obj, .ply, .stl) decides the
+/// format.
+#[pyfunction]
+pub(crate) fn write_mesh(
+    py: Python<'_>,
+    path: std::path::PathBuf,
+    vertices: &Bound<'_, PyAny>,
+    faces: &Bound<'_, PyAny>,
+) -> PyResult<()> {
+    let mesh = mesh(vertices, faces)?;
+    py.detach(|| rbf_mesh::write_mesh(&path, &mesh))
+        .map_err(bad)
+}
+
+/// The conversion of a closed mesh to an implicit surface (see ``rbfsurf.convert``).
+#[pyfunction]
+#[pyo3(signature = (vertices, faces, *, method="iterative", resolution=128, max_constraints=None, max_iterations=30, smoothing=0.0, offset=0.01))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn convert<'py>(
+    py: Python<'py>,
+    vertices: &Bound<'py, PyAny>,
+    faces: &Bound<'py, PyAny>,
+    method: &str,
+    resolution: usize,
+    max_constraints: Option<usize>,
+    max_iterations: usize,
+    smoothing: f64,
+    offset: f64,
+) -> PyResult<(Model, Bound<'py, PyDict>)> {
+    let mesh = mesh(vertices, faces)?;
+    let fail = |e: ConvertError| bad(e);
+    let report = PyDict::new(py);
+    report.set_item("method", method)?;
+    let model = match method {
+        "normals" => {
+            if !(offset > 0.0 && offset.is_finite()) {
+                return Err(bad(format!(
+                    "offset must be a finite fraction > 0, not {offset}"
+                )));
+            }
+            let settings = NormalSettings {
+                offset: NormalOffset::Relative(offset),
+                max_vertices: max_constraints.unwrap_or(usize::MAX),
+                lambda: smoothing,
+                tolerance: None,
+            };
+            let (model, r) = py
+                .detach(|| convert_normals(&mesh, &settings))
+                .map_err(fail)?;
+            report.set_item("vertices", r.vertices)?;
+            report.set_item("vertices_used", r.vertices_used)?;
+            report.set_item("without_normal", r.without_normal)?;
+            report.set_item("rows", r.fit.rows)?;
+            report.set_item("residual", r.fit.residual)?;
+            model
+        }
+        "iterative" => {
+            if !(8..=1024).contains(&resolution) {
+                return Err(bad(format!(
+                    "resolution must be 8 to 1024 voxels, not {resolution}"
+                )));
+            }
+            let settings = IterativeSettings {
+                resolution,
+                max_iterations,
+                max_constraints: max_constraints.unwrap_or(5000),
+                lambda: smoothing,
+                ..Default::default()
+            };
+            let (model, r) = py
+                .detach(|| convert_iterative(&mesh, &settings, |_, _| {}))
+                .map_err(fail)?;
+            let best = &r.iterations[r.best.saturating_sub(1).min(r.iterations.len() - 1)];
+            report.set_item("shape", r.shape.to_vec())?;
+            report.set_item("voxel_size", r.voxel_size)?;
+            report.set_item("watertight", r.watertight)?;
+            report.set_item("iterations", r.iterations.len())?;
+            report.set_item("best_iteration", r.best)?;
+            report.set_item("max_error_voxels", best.max_error)?;
+            report.set_item("rms_error_voxels", best.rms_error)?;
+            report.set_item("constraints", best.boundary + best.interior + best.exterior)?;
+            model
+        }
+        other => {
+            return Err(bad(format!(
+                "method must be \"iterative\" or \"normals\", not {other:?}"
+            )));
+        }
+    };
+    if let Some(r) = &model.report {
+        report.set_item("fit_residual", r.residual)?;
+    }
+    Ok((Model::new(model), report))
+}
+
+/// Voxels of a closed mesh (see ``rbfsurf.voxelize``): the values, the centre of voxel
+/// (0, 0, 0) and the voxel size.
+#[pyfunction]
+#[pyo3(signature = (vertices, faces, *, resolution=64, supersampling=4, method="auto", distance=false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn _voxelize<'py>(
+    py: Python<'py>,
+    vertices: &Bound<'py, PyAny>,
+    faces: &Bound<'py, PyAny>,
+    resolution: usize,
+    supersampling: usize,
+    method: &str,
+    distance: bool,
+) -> PyResult<(Bound<'py, PyAny>, [f64; 3], f64)> {
+    let mesh = mesh(vertices, faces)?;
+    let method = match method {
+        "auto" => VoxelMethod::Auto,
+        "rays" => VoxelMethod::Rays,
+        "winding" => VoxelMethod::Winding,
+        other => {
+            return Err(bad(format!(
+                "method must be \"auto\", \"rays\" or \"winding\", not {other:?}"
+            )));
+        }
+    };
+    let settings = VoxelSettings {
+        resolution,
+        supersampling,
+        method,
+        memory_limit: rbf_solve::memory_budget(),
+        ..Default::default()
+    };
+    let volume = py
+        .detach(|| {
+            voxelize(&mesh, &settings).map(|v| if distance { signed_distance(&v) } else { v })
+        })
+        .map_err(bad)?;
+    let origin = volume.origin;
+    let size = volume.voxel_size;
+    let shape = volume.shape;
+    Ok((owned(py, volume.data, &shape)?, origin, size))
+}
