@@ -48,10 +48,12 @@ impl<'py> Floats<'py> {
     /// The numbers in C order: the array's own memory when it is C-contiguous, a copy otherwise
     /// (Fortran order, strided views).
     pub(crate) fn values(&self) -> PyResult<Cow<'_, [f64]>> {
-        Ok(match self.array.as_slice() {
-            Ok(s) => Cow::Borrowed(s),
-            Err(_) => Cow::Owned(self.array.as_array().iter().copied().collect()),
-        })
+        if self.array.is_c_contiguous()
+            && let Ok(s) = self.array.as_slice()
+        {
+            return Ok(Cow::Borrowed(s));
+        }
+        Ok(Cow::Owned(self.array.as_array().iter().copied().collect()))
     }
 
     /// The rows of an `(n, D)` array as points; an error naming `name` for another shape.

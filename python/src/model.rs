@@ -18,7 +18,7 @@ use crate::error::bad;
 ///
 /// >>> import numpy as np, rbfsurf
 /// >>> m = rbfsurf.fit(interior=[[0, 0, 0]], boundary=np.eye(3).tolist() + [[-1, -1, -1]])
-/// >>> float(m([[0, 0, 0]])[0])
+/// >>> round(float(m([[0, 0, 0]])[0]), 9)
 /// 1.0
 #[pyclass(module = "rbfsurf", frozen)]
 pub(crate) struct Model {

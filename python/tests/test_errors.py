@@ -1,0 +1,93 @@
+"""Bad input raises RbfError (a ValueError) naming the culprit; nothing panics."""
+
+import numpy as np
+import pytest
+
+import rbfsurf
+from conftest import sphere_points
+
+
+def test_nan_names_the_constraint():
+    p = sphere_points(50)
+    p[7, 1] = np.nan
+    with pytest.raises(rbfsurf.RbfError, match="constraint 7"):
+        rbfsurf.from_oriented_points(p, p)
+    y = np.random.default_rng(0).uniform(size=(20, 3))
+    d = np.ones(20)
+    d[3] = np.inf
+    with pytest.raises(ValueError, match="constraint 3"):
+        rbfsurf.RBFInterpolator(y, d)
+
+
+def test_duplicate_points_are_named():
+    y = np.random.default_rng(1).uniform(size=(30, 2))
+    y[12] = y[4]
+    with pytest.raises(rbfsurf.RbfError, match=r"4.*12|12.*4"):
+        rbfsurf.RBFInterpolator(y, np.arange(30.0))
+
+
+def test_mismatched_shapes():
+    y = np.zeros((10, 3))
+    with pytest.raises(ValueError, match="d must have 10 rows"):
+        rbfsurf.RBFInterpolator(y, np.ones(9))
+    f = rbfsurf.RBFInterpolator(np.random.default_rng(2).uniform(size=(10, 3)), np.arange(10.0))
+    with pytest.raises(ValueError, match=r"x must have shape \(m, 3\)"):
+        f(np.zeros((4, 2)))
+    with pytest.raises(ValueError, match="2 or 3 dimensions"):
+        rbfsurf.RBFInterpolator(np.zeros((10, 4)), np.ones(10))
+    with pytest.raises(ValueError, match=r"shape \(n, 2\) or \(n, 3\)"):
+        rbfsurf.fit(boundary=np.zeros((10, 4)))
+    with pytest.raises(ValueError, match="normals"):
+        rbfsurf.from_oriented_points(np.zeros((5, 3)), np.zeros((4, 3)))
+    with pytest.raises(ValueError, match=r"smoothing must be a number or have shape \(10,\)"):
+        rbfsurf.RBFInterpolator(np.zeros((10, 3)), np.ones(10), smoothing=np.ones(3))
+    with pytest.raises(ValueError, match=r"x must have shape \(n, 3\)"):
+        f.models[0](np.zeros(3))
+    with pytest.raises(ValueError, match="uses vertex 9"):
+        rbfsurf.voxelize(np.zeros((4, 3)), [[0, 1, 9]])
+
+
+def test_coplanar_points_are_refused():
+    rng = np.random.default_rng(3)
+    y = np.c_[rng.uniform(size=(40, 2)), np.full(40, 0.5)]
+    with pytest.raises(rbfsurf.RbfError, match="plane"):
+        rbfsurf.RBFInterpolator(y, rng.uniform(size=40))
+
+
+def test_a_missing_or_bad_file(tmp_path):
+    with pytest.raises(FileNotFoundError, match="no-such.json"):
+        rbfsurf.load(tmp_path / "no-such.json")
+    with pytest.raises(ValueError):
+        rbfsurf.load(tmp_path / "no-such.json")
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"format": "something else"}')
+    with pytest.raises(rbfsurf.RbfError, match="bad.json: .*format"):
+        rbfsurf.load(bad)
+    with pytest.raises(rbfsurf.RbfError, match="no-mesh.obj"):
+        rbfsurf.read_mesh(tmp_path / "no-mesh.obj")
+
+
+def test_bad_options_are_value_errors_not_panics():
+    p = sphere_points(30)
+    m = rbfsurf.from_oriented_points(p, p)
+    for call in [
+        lambda: rbfsurf.RBFInterpolator(p, p[:, 0], kernel="gaussian"),
+        lambda: rbfsurf.RBFInterpolator(p, p[:, 0], degree=2),
+        lambda: rbfsurf.from_oriented_points(p, p, method="magic"),
+        lambda: rbfsurf.from_oriented_points(p, p, offset=-1.0),
+        lambda: rbfsurf.fit(),
+        lambda: rbfsurf.fit(boundary=[[0, 0, 0]]),
+        lambda: rbfsurf.fit(interior=([[0, 0, 0]], [-1.0]), boundary=p),
+        lambda: rbfsurf.fit(boundary=p, smoothing=-1.0),
+        lambda: m.polygonize(0),
+        lambda: m.polygonize(32, method="marching"),
+        lambda: m.render(0, 10),
+        lambda: m.render(10, 10, samples=0),
+        lambda: m(["a", "b", "c"]),
+        lambda: rbfsurf.convert(np.zeros((3, 3)), [[0, 1, 2]], method="other"),
+        lambda: rbfsurf.Session(rbfsurf.RBFInterpolator(p[:, :2], p[:, 2]).models[0]),
+    ]:
+        with pytest.raises(ValueError):
+            call()
+    with pytest.raises(NotImplementedError):
+        rbfsurf.RBFInterpolator(p, p[:, 0], neighbors=10)
