@@ -23,7 +23,7 @@ Every heavy call releases the GIL and runs on every core. Bad input raises ``Rbf
 True
 """
 
-from ._native import Model, RbfError, Session, read_mesh, write_mesh
+from ._native import Model, RbfError, Session, write_mesh
 from ._api import (
     RbfFileNotFoundError,
     VoxelGrid,
@@ -31,7 +31,8 @@ from ._api import (
     fit,
     from_oriented_points,
     load,
-    loads,
+        loads,
+    read_mesh,
     signed_distance,
     voxelize,
 )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 from typing import Any, NamedTuple, Optional, Tuple, Union
 
 import numpy as np
@@ -107,6 +108,24 @@ def fit(
         )
     if not np.isscalar(smoothing) and np.ndim(smoothing) != 0:
         raise RbfError("smoothing must be one number λ ≥ 0 (use RBFInterpolator for one per point)")
+    names = {_BOUNDARY: "boundary", _INTERIOR: "interior", _EXTERIOR: "exterior", _NORMAL: "normals"}
+    starts = np.cumsum([0] + [len(p) for p, _, _, _ in parts])
+    try:
+        return _fit_rows(points, kinds, values, all_normals, kernel, smoothing, offset, method, max_residual, allow_unconverged)
+    except RbfError as e:
+        # Name the user's argument and row, not the row of the concatenation.
+        def name(found: "re.Match[str]") -> str:
+            i = int(found.group(1))
+            k = int(np.searchsorted(starts, i, side="right")) - 1
+            return f"{names[parts[k][2]]}[{i - starts[k]}]"
+
+        message, renamed = re.subn(r"constraint (\d+)", name, str(e))
+        if not renamed:
+            raise
+        raise RbfError(message) from None
+
+
+def _fit_rows(points, kinds, values, all_normals, kernel, smoothing, offset, method, max_residual, allow_unconverged):
     return _native._fit(
         points,
         kinds,
@@ -244,6 +263,15 @@ def signed_distance(
     return VoxelGrid(values, np.asarray(origin), size)
 
 
+def read_mesh(path: Union[str, "os.PathLike[str]"]) -> Tuple[np.ndarray, np.ndarray]:
+    """Reads a mesh file (OBJ, PLY, STL): ``(vertices, faces)``, (n, 3) float64 and (m, 3)
+    int64 arrays."""
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        raise RbfFileNotFoundError(f"{path}: no such file")
+    return _native.read_mesh(path)
+
+
 def loads(text: str) -> Model:
     """A model from the JSON text of a model file."""
     return Model.from_json(text)
@@ -257,6 +285,8 @@ def load(path: Union[str, "os.PathLike[str]"]) -> Model:
             text = f.read()
     except FileNotFoundError:
         raise RbfFileNotFoundError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as e:
+        raise RbfError(f"{path}: {e}") from None
     try:
         return Model.from_json(text)
     except RbfError as e:

@@ -13,9 +13,13 @@ use crate::error::bad;
 /// otherwise (lists, other float widths, integers).
 fn as_array<'py>(obj: &Bound<'py, PyAny>, dtype: &str, name: &str) -> PyResult<Bound<'py, PyAny>> {
     let py = obj.py();
+    let numpy = py.import("numpy")?;
+    if numpy.call_method1("iscomplexobj", (obj,))?.is_truthy()? {
+        return Err(bad(format!("{name}: complex numbers are not taken")));
+    }
     let kwargs = PyDict::new(py);
     kwargs.set_item("dtype", dtype)?;
-    py.import("numpy")?
+    numpy
         .call_method("asarray", (obj,), Some(&kwargs))
         .map_err(|e| {
             bad(format!(
@@ -97,39 +101,49 @@ pub(crate) fn point_dimension(points: &Floats<'_>, name: &str) -> PyResult<usize
     }
 }
 
-/// Triangles as vertex indices: an `(m, 3)` array of integers, checked against `vertices`.
+/// Triangles as vertex indices: an `(m, 3)` array of whole numbers, checked against `vertices`.
 pub(crate) fn triangles(obj: &Bound<'_, PyAny>, vertices: usize) -> PyResult<Vec<[u32; 3]>> {
-    let array = as_array(obj, "int64", "faces")?
-        .cast_into::<PyArrayDyn<i64>>()
-        .map_err(|_| bad("faces: not an array of integers"))?;
-    let shape = array.shape().to_vec();
+    let faces = Floats::new(obj, "faces")?;
+    let shape = faces.shape();
     if shape.len() != 2 || shape[1] != 3 {
         return Err(bad(format!(
             "faces must have shape (m, 3), not {}",
             shape_text(&shape)
         )));
     }
-    let flat: Vec<i64> = array
-        .try_readonly()
-        .map_err(|e| bad(format!("faces: {e}")))?
-        .as_array()
-        .iter()
-        .copied()
-        .collect();
+    let flat = faces.values()?;
     if let Some(k) = flat
         .iter()
-        .position(|&i| i < 0 || i as u64 >= vertices as u64)
+        .position(|&i| !(i >= 0.0 && i < vertices as f64 && i.fract() == 0.0))
     {
         return Err(bad(format!(
-            "faces: triangle {} uses vertex {}, but there are {vertices} vertices",
+            "faces: triangle {} uses vertex {}, but the vertices are numbered 0 to {}",
             k / 3,
-            flat[k]
+            flat[k],
+            vertices as i64 - 1
         )));
     }
     Ok(flat
         .chunks_exact(3)
         .map(|t| [t[0] as u32, t[1] as u32, t[2] as u32])
         .collect())
+}
+
+/// A count given from Python, checked to lie in `range` (a negative one is a `ValueError` too,
+/// not an `OverflowError`).
+pub(crate) fn count(
+    value: i64,
+    range: std::ops::RangeInclusive<usize>,
+    name: &str,
+) -> PyResult<usize> {
+    match usize::try_from(value) {
+        Ok(v) if range.contains(&v) => Ok(v),
+        _ => Err(bad(format!(
+            "{name} must be {} to {}, not {value}",
+            range.start(),
+            range.end()
+        ))),
+    }
 }
 
 /// `(n, …)` as Python prints a shape.

@@ -65,6 +65,12 @@ where
             points.len()
         )));
     }
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(bad(format!(
+            "constraint {i}: the value {} is not a finite number",
+            values[i]
+        )));
+    }
     let mut constraints = Vec::with_capacity(points.len());
     for (i, p) in points.iter().enumerate() {
         let c = match kinds[i] {

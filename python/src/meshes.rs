@@ -8,7 +8,7 @@ use rbf_convert::{
 use rbf_core::NormalOffset;
 use rbf_mesh::{TriMesh, VoxelMethod, VoxelSettings, signed_distance, voxelize};
 
-use crate::arrays::{Floats, owned, triangles};
+use crate::arrays::{Floats, count, owned, triangles};
 use crate::error::bad;
 use crate::model::Model;
 
@@ -64,13 +64,18 @@ pub(crate) fn convert<'py>(
     vertices: &Bound<'py, PyAny>,
     faces: &Bound<'py, PyAny>,
     method: &str,
-    resolution: usize,
-    max_constraints: Option<usize>,
-    max_iterations: usize,
+    resolution: i64,
+    max_constraints: Option<i64>,
+    max_iterations: i64,
     smoothing: f64,
     offset: f64,
 ) -> PyResult<(Model, Bound<'py, PyDict>)> {
     let mesh = mesh(vertices, faces)?;
+    let resolution = count(resolution, 8..=1024, "resolution")?;
+    let max_iterations = count(max_iterations, 1..=1000, "max_iterations")?;
+    let max_constraints = max_constraints
+        .map(|m| count(m, 1..=usize::MAX, "max_constraints"))
+        .transpose()?;
     let fail = |e: ConvertError| bad(e);
     let report = PyDict::new(py);
     report.set_item("method", method)?;
@@ -98,11 +103,6 @@ pub(crate) fn convert<'py>(
             model
         }
         "iterative" => {
-            if !(8..=1024).contains(&resolution) {
-                return Err(bad(format!(
-                    "resolution must be 8 to 1024 voxels, not {resolution}"
-                )));
-            }
             let settings = IterativeSettings {
                 resolution,
                 max_iterations,
@@ -145,12 +145,18 @@ pub(crate) fn _voxelize<'py>(
     py: Python<'py>,
     vertices: &Bound<'py, PyAny>,
     faces: &Bound<'py, PyAny>,
-    resolution: usize,
-    supersampling: usize,
+    resolution: i64,
+    supersampling: i64,
     method: &str,
     distance: bool,
 ) -> PyResult<(Bound<'py, PyAny>, [f64; 3], f64)> {
     let mesh = mesh(vertices, faces)?;
+    let resolution = count(resolution, 1..=4096, "resolution")?;
+    let supersampling = count(
+        supersampling,
+        1..=rbf_mesh::MAX_SUPERSAMPLING,
+        "supersampling",
+    )?;
     let method = match method {
         "auto" => VoxelMethod::Auto,
         "rays" => VoxelMethod::Rays,

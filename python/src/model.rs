@@ -6,7 +6,7 @@ use rbf_core::{AnyModel, FitReport, Kernel, Model as CoreModel};
 use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_continuation, polygonize_grid};
 use rbf_render::{Camera, Csg, Object, RenderSettings, render, surface_bounds};
 
-use crate::arrays::{Floats, owned};
+use crate::arrays::{Floats, count, owned};
 use crate::error::bad;
 
 /// A fitted model: f(x) = Σ wⱼ φ(|x − cⱼ|) + a + b·x, positive inside, zero on the surface,
@@ -97,7 +97,13 @@ fn report_dict<'py>(py: Python<'py>, r: &FitReport) -> PyResult<Bound<'py, PyDic
     d.set_item("rows", r.rows)?;
     d.set_item("residual", r.residual)?;
     d.set_item("condition", r.condition)?;
-    d.set_item("method", format!("{:?}", r.method))?;
+    // The model file's name of the method (`projected-cholesky`, `iterative`, …).
+    let method = serde_json::to_value(r.method)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_owned))
+        .unwrap_or_default();
+    d.set_item("method", method)?;
+    d.set_item("refinements", r.refinements)?;
     d.set_item("iterations", r.iterations)?;
     Ok(d)
 }
@@ -208,9 +214,20 @@ impl Model {
 
     /// Writes the model file (JSON) that ``rbfsurf.load`` and the ``rbf`` command read.
     fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
-        let json = self.to_json();
-        py.detach(|| std::fs::write(&path, json))
-            .map_err(|e| pyo3::exceptions::PyOSError::new_err(format!("{}: {e}", path.display())))
+        py.detach(|| {
+            // Through a temporary file and a rename: an interrupted save leaves the old file.
+            let name = path
+                .file_name()
+                .map_or("model".into(), |n| n.to_string_lossy().into_owned());
+            let tmp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+            let written =
+                std::fs::write(&tmp, self.to_json()).and_then(|_| std::fs::rename(&tmp, &path));
+            if written.is_err() {
+                let _ = std::fs::remove_file(&tmp);
+            }
+            written
+        })
+        .map_err(|e| pyo3::exceptions::PyOSError::new_err(format!("{}: {e}", path.display())))
     }
 
     /// The surface f = 0 as a triangle mesh: ``(vertices, faces)``, an (n, 3) float64 array and
@@ -222,15 +239,11 @@ impl Model {
     fn polygonize<'py>(
         &self,
         py: Python<'py>,
-        resolution: usize,
+        resolution: i64,
         method: &str,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
         let model = self.three("polygonize")?;
-        if !(2..=4096).contains(&resolution) {
-            return Err(bad(format!(
-                "resolution must be 2 to 4096 cubes, not {resolution}"
-            )));
-        }
+        let resolution = count(resolution, 2..=2048, "resolution")?;
         let grid = match method {
             "continuation" => false,
             "grid" => true,
@@ -275,18 +288,19 @@ impl Model {
     fn render<'py>(
         &self,
         py: Python<'py>,
-        width: u32,
-        height: u32,
+        width: i64,
+        height: i64,
         azimuth: f64,
         elevation: f64,
-        samples: u32,
+        samples: i64,
         shadows: bool,
         ground: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let model = self.three("render")?;
-        if !(1..=16).contains(&samples) {
-            return Err(bad(format!("samples must be 1 to 16, not {samples}")));
-        }
+        let side = 1..=rbf_render::MAX_SIDE as usize;
+        let width = count(width, side.clone(), "width")? as u32;
+        let height = count(height, side, "height")? as u32;
+        let samples = count(samples, 1..=16, "samples")? as u32;
         if !(azimuth.is_finite() && elevation.is_finite()) {
             return Err(bad(
                 "azimuth and elevation must be finite numbers of degrees",

@@ -3,7 +3,7 @@
 use std::time::Instant;
 
 use pyo3::prelude::*;
-use rbf_core::AnyModel;
+use rbf_core::{AnyModel, Kernel};
 use rbf_sculpt::{Answer, Session as CoreSession};
 
 use crate::error::bad;
@@ -12,7 +12,8 @@ use crate::model::Model;
 /// An editing session (Turk & O'Brien 2002, §5): constraints added, moved, deleted and undone
 /// one at a time, each edit solved by updating a factorization. It takes the command lines of
 /// ``rbf sculpt -`` (``add X Y Z``, ``pick OX OY OZ DX DY DZ``, ``move I X Y Z``, ``normal I``,
-/// ``tip I X Y Z``, ``delete I``, ``undo``, ``redo``, …; ``help`` lists them).
+/// ``tip I X Y Z``, ``delete I``, ``undo``, ``redo``: ``Session.COMMANDS`` lists them). A
+/// model given to it must be cubic and unsmoothed (the session interpolates with r³).
 ///
 /// >>> import rbfsurf
 /// >>> s = rbfsurf.Session()          # the paper's start: a sphere of 12 constraints
@@ -27,14 +28,32 @@ pub(crate) struct Session {
 
 #[pymethods]
 impl Session {
+    /// The command lines a session takes, one per line with what it does.
+    #[classattr]
+    const COMMANDS: &'static str = rbf_sculpt::COMMANDS;
+
     /// A session starting from ``model`` (a 3D ``Model``), or from the paper's starting
     /// sphere.
     #[new]
     #[pyo3(signature = (model=None))]
-    fn new(model: Option<&Model>) -> PyResult<Self> {
+    fn new(py: Python<'_>, model: Option<&Model>) -> PyResult<Self> {
         let inner = match model.map(|m| &m.inner) {
             None => CoreSession::new(),
-            Some(AnyModel::Three(m)) => CoreSession::from_model(m),
+            Some(AnyModel::Three(m)) => {
+                // The session solves exactly with r³: refuse what it would silently change.
+                if m.settings.kernel_for(3) != Kernel::Cubic {
+                    return Err(bad(format!(
+                        "a session fits with the cubic kernel; this model's is {}",
+                        crate::model::kernel_name(m.settings.kernel_for(3))
+                    )));
+                }
+                if m.settings.lambda != 0.0 || m.constraints.iter().any(|c| c.smoothing != 0.0) {
+                    return Err(bad(
+                        "a session interpolates exactly; this model was fitted with smoothing",
+                    ));
+                }
+                py.detach(|| CoreSession::from_model(m))
+            }
             Some(AnyModel::Two(_)) => {
                 return Err(bad("a session edits surfaces: give a 3D model"));
             }

@@ -36,9 +36,10 @@ def test_convert_a_folder_with_dask_and_resume(tmp_path):
     }
     assert "broken.obj" in summary["broken.obj"]["error"]
     assert "3 converted, 0 skipped (already done), 1 failed" in first.stdout
-    for name, genus in [("sphere", 0), ("torus", 1), ("box", 0)]:
+    for name, genus in [("sphere.obj", 0), ("torus.ply", 1), ("box.stl", 0)]:
         model = rbfsurf.load(out / f"{name}.json")
         report = json.loads((out / f"{name}.report.json").read_text())
+        assert report["source"]["resolution"] == 24 and report["source"]["method"] == "iterative"
         assert report["centres"] == len(model.centres) and report["watertight"]
         V, F = model.polygonize(32, method="grid")
         assert mesh_topology(V, F) == (True, 1, 2 - 2 * genus), name
@@ -48,3 +49,12 @@ def test_convert_a_folder_with_dask_and_resume(tmp_path):
     assert second.returncode == 1
     assert "0 converted, 3 skipped (already done), 1 failed" in second.stdout, second.stdout
     assert {p.name: p.stat().st_mtime_ns for p in out.glob("*.json") if p.name != "summary.json"} == stamps
+    skipped = {r["mesh"]: r for r in json.loads((out / "summary.json").read_text())}
+    assert skipped["torus.ply"]["centres"] == summary["torus.ply"]["centres"], "filled from the report"
+
+    # Other settings, or a changed mesh, are not the finished work: converted again.
+    (meshes / "broken.obj").unlink()
+    third = subprocess.run(command[:-3] + ["20", "--workers", "2"], capture_output=True, text=True, timeout=600)
+    assert third.returncode == 0, third.stdout + third.stderr
+    assert "3 converted, 0 skipped (already done), 0 failed" in third.stdout, third.stdout
+    assert json.loads((out / "box.stl.report.json").read_text())["source"]["resolution"] == 20

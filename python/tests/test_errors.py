@@ -10,13 +10,35 @@ from conftest import sphere_points
 def test_nan_names_the_constraint():
     p = sphere_points(50)
     p[7, 1] = np.nan
-    with pytest.raises(rbfsurf.RbfError, match="constraint 7"):
+    with pytest.raises(rbfsurf.RbfError, match=r"normals\[7\]: its position is not a finite number"):
         rbfsurf.from_oriented_points(p, p)
     y = np.random.default_rng(0).uniform(size=(20, 3))
     d = np.ones(20)
     d[3] = np.inf
-    with pytest.raises(ValueError, match="constraint 3"):
+    with pytest.raises(ValueError, match="row 3"):
         rbfsurf.RBFInterpolator(y, d)
+    y[5, 0] = np.nan
+    with pytest.raises(ValueError, match="constraint 5: its position is not a finite number"):
+        rbfsurf.RBFInterpolator(y, np.ones(20))
+
+
+def test_nan_in_the_data_is_refused_not_read_as_zero():
+    y = np.random.default_rng(0).uniform(size=(20, 3))
+    d = np.ones((20, 2))
+    d[3, 1] = np.nan
+    with pytest.raises(rbfsurf.RbfError, match="d: row 3 is not a finite number"):
+        rbfsurf.RBFInterpolator(y, d)
+    with pytest.raises(rbfsurf.RbfError, match="exterior\\[1\\]"):
+        rbfsurf.fit(boundary=y[:10], exterior=(y[10:12], [-1.0, np.nan]))
+
+
+def test_errors_name_the_users_argument_and_row():
+    p = np.random.default_rng(4).uniform(size=(20, 3))
+    p[15] = p[2]
+    with pytest.raises(rbfsurf.RbfError, match=r"boundary\[2\] and normals\[5\]"):
+        rbfsurf.fit(boundary=p[:10], normals=(p[10:], p[10:]), interior=[[0.5, 0.5, 0.5]])
+    with pytest.raises(rbfsurf.RbfError, match=r"interior\[1\] \(interior\): value = -1"):
+        rbfsurf.fit(boundary=np.eye(3), interior=([[0, 0, 0], [0.1, 0, 0]], [1, -1]))
 
 
 def test_duplicate_points_are_named():
@@ -63,8 +85,17 @@ def test_a_missing_or_bad_file(tmp_path):
     bad.write_text('{"format": "something else"}')
     with pytest.raises(rbfsurf.RbfError, match="bad.json: .*format"):
         rbfsurf.load(bad)
-    with pytest.raises(rbfsurf.RbfError, match="no-mesh.obj"):
+    with pytest.raises(FileNotFoundError, match="no-mesh.obj"):
         rbfsurf.read_mesh(tmp_path / "no-mesh.obj")
+    with pytest.raises(rbfsurf.RbfError, match="is a directory|Is a directory"):
+        rbfsurf.load(tmp_path)
+
+
+def box():
+    v = [[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    f = [[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+         [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]]
+    return v, f
 
 
 def test_bad_options_are_value_errors_not_panics():
@@ -84,6 +115,17 @@ def test_bad_options_are_value_errors_not_panics():
         lambda: m.render(0, 10),
         lambda: m.render(10, 10, samples=0),
         lambda: m(["a", "b", "c"]),
+        lambda: m([[1j, 0, 0]]),
+        lambda: m.polygonize(-1),
+        lambda: m.render(-5, 10),
+        lambda: rbfsurf.voxelize(*box(), resolution=-1),
+        lambda: rbfsurf.voxelize(*box(), supersampling=10**6),
+        lambda: rbfsurf.voxelize(*box(), supersampling=0),
+        lambda: rbfsurf.voxelize(box()[0], [[0, 1, 2.5]]),
+        lambda: rbfsurf.convert(*box(), resolution=-8),
+        lambda: rbfsurf.convert(*box(), max_iterations=-1),
+        lambda: rbfsurf.Session(rbfsurf.from_oriented_points(p, p, smoothing=0.1)),
+        lambda: rbfsurf.Session(rbfsurf.from_oriented_points(p, p, kernel="linear")),
         lambda: rbfsurf.convert(np.zeros((3, 3)), [[0, 1, 2]], method="other"),
         lambda: rbfsurf.Session(rbfsurf.RBFInterpolator(p[:, :2], p[:, 2]).models[0]),
     ]:

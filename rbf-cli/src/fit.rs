@@ -57,7 +57,8 @@ pub(crate) struct FitArgs {
     /// Model file to write (JSON).
     #[arg(short, long, value_name = "MODEL.json")]
     output: PathBuf,
-    /// Regularization λ ≥ 0 added to the diagonal: 0 interpolates exactly, larger is smoother.
+    /// Regularization λ ≥ 0 on the diagonal (subtracted for the linear kernel r, as scipy's
+    /// smoothing): 0 interpolates exactly, larger is smoother.
     #[arg(long, value_name = "L", allow_hyphen_values = true)]
     lambda: Option<f64>,
     /// Radial kernel [default: thin-plate in 2D, cubic in 3D].

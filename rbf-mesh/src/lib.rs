@@ -52,5 +52,5 @@ pub use polygonize::{
 };
 pub use sample::sample_surface;
 pub use volume::{Volume, classify_blocks, has_other_neighbour};
-pub use voxelize::{VoxelMethod, VoxelSettings, check_volume_size, voxelize};
+pub use voxelize::{MAX_SUPERSAMPLING, VoxelMethod, VoxelSettings, check_volume_size, voxelize};
 pub use winding::{WindingTree, winding_numbers, winding_numbers_exact};

@@ -18,7 +18,8 @@ pub struct VoxelSettings {
     pub resolution: usize,
     /// Empty voxels added around the bounding box on every side. 2.
     pub margin: usize,
-    /// Sub-samples along each axis of a voxel (s³ per voxel, s² rays per voxel column). 4.
+    /// Sub-samples along each axis of a voxel (s³ per voxel, s² rays per voxel column), 1 to
+    /// [`MAX_SUPERSAMPLING`]. 4.
     pub supersampling: usize,
     /// How a sample is classed inside: by ray crossings, by winding number, or `Auto` (the
     /// default: rays when the mesh is watertight).
@@ -83,6 +84,9 @@ pub fn check_volume_size(shape: [usize; 3], memory_limit: Option<u64>) -> Result
     Ok(())
 }
 
+/// The largest supersampling: 16³ samples per voxel already resolve a density to 1/4096.
+pub const MAX_SUPERSAMPLING: usize = 16;
+
 /// The grid a mesh is voxelized on.
 pub(crate) fn voxel_grid(
     mesh: &TriMesh,
@@ -90,9 +94,12 @@ pub(crate) fn voxel_grid(
 ) -> Result<Volume<f32>, MeshError> {
     let (lo, hi) = mesh.bounding_box();
     let longest = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
-    if settings.resolution == 0 || settings.supersampling == 0 || !(longest > 0.0) {
+    if settings.resolution == 0
+        || !(1..=MAX_SUPERSAMPLING).contains(&settings.supersampling)
+        || !(longest > 0.0)
+    {
         return Err(MeshError::Invalid(format!(
-            "cannot voxelize at resolution {} with supersampling {} a mesh {longest} across",
+            "cannot voxelize at resolution {} with supersampling {} (1 to {MAX_SUPERSAMPLING}) a mesh {longest} across",
             settings.resolution, settings.supersampling
         )));
     }

@@ -171,3 +171,34 @@ fn meshes_too_small_or_too_large_to_voxelize_are_errors() {
         }
     }
 }
+
+#[test]
+fn supersampling_outside_its_range_is_an_error_before_anything_is_allocated() {
+    let mesh = TriMesh::new(
+        vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+    )
+    .unwrap();
+    for method in [VoxelMethod::Rays, VoxelMethod::Winding] {
+        for supersampling in [0, rbf_mesh::MAX_SUPERSAMPLING + 1, 1 << 20] {
+            let settings = VoxelSettings {
+                resolution: 8,
+                supersampling,
+                method,
+                ..Default::default()
+            };
+            let e = voxelize(&mesh, &settings).err().map(|e| e.to_string());
+            assert!(
+                e.as_deref().is_some_and(|e| e.contains("(1 to 16)")),
+                "{supersampling}: {e:?}"
+            );
+        }
+        let settings = VoxelSettings {
+            resolution: 8,
+            supersampling: rbf_mesh::MAX_SUPERSAMPLING,
+            method,
+            ..Default::default()
+        };
+        assert!(voxelize(&mesh, &settings).is_ok());
+    }
+}
