@@ -236,10 +236,7 @@ def voxelize(
     >>> abs(float(g.values.sum()) * g.voxel_size**3 - 1 / 6) < 0.01
     True
     """
-    values, origin, size = _native._voxelize(
-        vertices, faces, resolution=resolution, supersampling=supersampling, method=method
-    )
-    return VoxelGrid(values, np.asarray(origin), size)
+    return _grid(vertices, faces, resolution, supersampling, method, distance=False)
 
 
 def signed_distance(
@@ -252,13 +249,17 @@ def signed_distance(
 ) -> VoxelGrid:
     """The signed distance to a closed mesh's surface at every voxel centre (float32, in the
     mesh's units, positive inside), from its voxels by an exact distance transform."""
+    return _grid(vertices, faces, resolution, supersampling, method, distance=True)
+
+
+def _grid(vertices, faces, resolution, supersampling, method, distance):
     values, origin, size = _native._voxelize(
         vertices,
         faces,
         resolution=resolution,
         supersampling=supersampling,
         method=method,
-        distance=True,
+        distance=distance,
     )
     return VoxelGrid(values, np.asarray(origin), size)
 

@@ -161,6 +161,24 @@ pub(crate) fn shape_text(shape: &[usize]) -> String {
     }
 }
 
+/// A mesh as NumPy arrays: `(vertices, faces)`, (n, 3) float64 and (m, 3) int64.
+pub(crate) fn mesh_arrays<'py>(
+    py: Python<'py>,
+    mesh: &rbf_mesh::TriMesh,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (n, m) = (mesh.positions().len(), mesh.triangles().len());
+    let faces: Vec<i64> = mesh
+        .triangles()
+        .as_flattened()
+        .iter()
+        .map(|&i| i64::from(i))
+        .collect();
+    Ok((
+        owned(py, mesh.positions().as_flattened().to_vec(), &[n, 3])?,
+        owned(py, faces, &[m, 3])?,
+    ))
+}
+
 /// A NumPy array of `shape` owning `data` (C order).
 pub(crate) fn owned<'py, T: numpy::Element>(
     py: Python<'py>,

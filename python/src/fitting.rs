@@ -38,24 +38,39 @@ pub(crate) fn kernel(name: Option<&str>) -> PyResult<Option<Kernel>> {
     })
 }
 
-/// The whole fit of D-dimensional constraints, without the GIL.
-#[allow(clippy::too_many_arguments)]
-fn fit_in<const D: usize>(
-    py: Python<'_>,
-    positions: &Floats<'_>,
-    kinds: &[u8],
-    values: &[f64],
-    normals: Option<&Floats<'_>>,
-    smoothing: &[f64],
+/// What `_fit` was given, read and checked, in either dimension.
+struct Rows<'py> {
+    positions: Floats<'py>,
+    kinds: Vec<u8>,
+    values: Vec<f64>,
+    normals: Option<Floats<'py>>,
+    smoothing: Vec<f64>,
     settings: FitSettings,
     method: Method,
     allow_unconverged: bool,
-) -> PyResult<Model>
+}
+
+/// The whole fit of D-dimensional constraints, without the GIL.
+fn fit_in<const D: usize>(py: Python<'_>, rows: &Rows<'_>) -> PyResult<Model>
 where
     CoreModel<D>: IntoAnyModel,
 {
+    let Rows {
+        positions,
+        kinds,
+        values,
+        normals,
+        smoothing,
+        settings,
+        method,
+        allow_unconverged,
+    } = rows;
+    let (settings, method, allow_unconverged) = (*settings, *method, *allow_unconverged);
     let points = positions.points::<D>("points")?;
-    let normals = normals.map(|n| n.points::<D>("normals")).transpose()?;
+    let normals = normals
+        .as_ref()
+        .map(|n| n.points::<D>("normals"))
+        .transpose()?;
     if let Some(n) = &normals
         && n.len() != points.len()
     {
@@ -175,33 +190,19 @@ pub(crate) fn _fit(
         max_residual,
         ..Default::default()
     };
-    let go = |d| -> PyResult<Model> {
-        let normals = normals.as_ref();
-        if d == 2 {
-            fit_in::<2>(
-                py,
-                &positions,
-                &kinds,
-                &values,
-                normals,
-                &smoothing,
-                settings,
-                method,
-                allow_unconverged,
-            )
-        } else {
-            fit_in::<3>(
-                py,
-                &positions,
-                &kinds,
-                &values,
-                normals,
-                &smoothing,
-                settings,
-                method,
-                allow_unconverged,
-            )
-        }
+    let rows = Rows {
+        positions,
+        kinds,
+        values,
+        normals,
+        smoothing,
+        settings,
+        method,
+        allow_unconverged,
     };
-    go(dim)
+    if dim == 2 {
+        fit_in::<2>(py, &rows)
+    } else {
+        fit_in::<3>(py, &rows)
+    }
 }

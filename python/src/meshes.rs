@@ -8,7 +8,7 @@ use rbf_convert::{
 use rbf_core::NormalOffset;
 use rbf_mesh::{TriMesh, VoxelMethod, VoxelSettings, signed_distance, voxelize};
 
-use crate::arrays::{Floats, count, owned, triangles};
+use crate::arrays::{Floats, count, mesh_arrays, owned, triangles};
 use crate::error::bad;
 use crate::model::Model;
 
@@ -28,17 +28,7 @@ pub(crate) fn read_mesh<'py>(
     path: std::path::PathBuf,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
     let mesh = py.detach(|| rbf_mesh::read_mesh(&path)).map_err(bad)?;
-    let (n, m) = (mesh.positions().len(), mesh.triangles().len());
-    let faces: Vec<i64> = mesh
-        .triangles()
-        .as_flattened()
-        .iter()
-        .map(|&i| i64::from(i))
-        .collect();
-    Ok((
-        owned(py, mesh.positions().as_flattened().to_vec(), &[n, 3])?,
-        owned(py, faces, &[m, 3])?,
-    ))
+    mesh_arrays(py, &mesh)
 }
 
 /// Writes ``(vertices, faces)`` as a mesh file; the extension (.obj, .ply, .stl) decides the

@@ -6,7 +6,7 @@ use rbf_core::{AnyModel, FitReport, Kernel, Model as CoreModel};
 use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_continuation, polygonize_grid};
 use rbf_render::{Camera, Csg, Object, RenderSettings, render, surface_bounds};
 
-use crate::arrays::{Floats, count, owned};
+use crate::arrays::{Floats, count, mesh_arrays, owned};
 use crate::error::bad;
 
 /// A fitted model: f(x) = Σ wⱼ φ(|x − cⱼ|) + a + b·x, positive inside, zero on the surface,
@@ -59,32 +59,22 @@ impl Model {
     }
 }
 
-/// Values of a D-dimensional model at the rows of `x`, on every core without the GIL.
-fn values<const D: usize>(
+/// Values of a D-dimensional model at the rows of `x` (or, with `gradient`, its gradients
+/// row by row), on every core without the GIL; and the number of rows.
+fn evaluate<const D: usize>(
     py: Python<'_>,
     m: &CoreModel<D>,
     x: &Floats<'_>,
-) -> PyResult<(Vec<f64>, usize)> {
-    let points = x.points::<D>("x")?;
-    let f = m.interpolant.view();
-    let out = py.detach(|| {
-        let mut out = vec![0.0; points.len()];
-        let _ = f.par_values(&points, &mut out);
-        out
-    });
-    Ok((out, points.len()))
-}
-
-/// Gradients, row by row, of a D-dimensional model at the rows of `x`.
-fn gradients<const D: usize>(
-    py: Python<'_>,
-    m: &CoreModel<D>,
-    x: &Floats<'_>,
+    gradient: bool,
 ) -> PyResult<(Vec<f64>, usize)> {
     let points = x.points::<D>("x")?;
     let f = m.interpolant.view();
     let out = py.detach(|| {
         let mut values = vec![0.0; points.len()];
+        if !gradient {
+            let _ = f.par_values(&points, &mut values);
+            return values;
+        }
         let mut grads = vec![[0.0; D]; points.len()];
         let _ = f.par_values_and_gradients(&points, &mut values, &mut grads);
         grads.into_flattened()
@@ -124,8 +114,8 @@ impl Model {
     fn __call__<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let x = Floats::new(x, "x")?;
         let (v, n) = match &self.inner {
-            AnyModel::Two(m) => values(py, m, &x)?,
-            AnyModel::Three(m) => values(py, m, &x)?,
+            AnyModel::Two(m) => evaluate(py, m, &x, false)?,
+            AnyModel::Three(m) => evaluate(py, m, &x, false)?,
         };
         owned(py, v, &[n])
     }
@@ -135,8 +125,8 @@ impl Model {
         let x = Floats::new(x, "x")?;
         let dim = self.dim();
         let (g, n) = match &self.inner {
-            AnyModel::Two(m) => gradients(py, m, &x)?,
-            AnyModel::Three(m) => gradients(py, m, &x)?,
+            AnyModel::Two(m) => evaluate(py, m, &x, true)?,
+            AnyModel::Three(m) => evaluate(py, m, &x, true)?,
         };
         owned(py, g, &[n, dim])
     }
@@ -266,18 +256,7 @@ impl Model {
             }
         });
         let (mesh, _) = result.map_err(bad)?;
-        let n = mesh.positions().len();
-        let m = mesh.triangles().len();
-        let faces: Vec<i64> = mesh
-            .triangles()
-            .as_flattened()
-            .iter()
-            .map(|&i| i64::from(i))
-            .collect();
-        Ok((
-            owned(py, mesh.positions().as_flattened().to_vec(), &[n, 3])?,
-            owned(py, faces, &[m, 3])?,
-        ))
+        mesh_arrays(py, &mesh)
     }
 
     /// A sphere-traced picture: an (height, width, 3) uint8 sRGB array. The camera orbits the
