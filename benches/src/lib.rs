@@ -94,7 +94,16 @@ pub fn torus_and_ball(m: usize) -> rbf_mesh::Volume<f32> {
 
 /// A torus of `n` oriented points (3000 rows for n = 1500), fitted.
 pub fn torus_model(n: usize) -> Model<3> {
-    let cs = rbf_core::shapes::torus(n, 0.35);
+    fitted(rbf_core::shapes::torus(n, 0.35))
+}
+
+/// The peers' random sphere problem of `rows` rows ([`sphere_constraints`]), fitted: the
+/// unfavourable case beside the Fibonacci torus.
+pub fn random_sphere_model(rows: usize) -> Model<3> {
+    fitted(sphere_constraints(rows, 7))
+}
+
+fn fitted(cs: Vec<Constraint<3>>) -> Model<3> {
     let settings = FitSettings::default();
     let fit = rbf_solve::fit(&cs, &settings).expect("the torus fits");
     Model {

@@ -13,8 +13,13 @@ use crate::common::{read_mesh, read_model_3d, write_atomically};
 use crate::failure::{BAD_INPUT, Failure, USAGE};
 
 pub(crate) const HELP: &str = "\
-Models are sphere traced: every step is bounded by a Lipschitz constant proved per cell from
-the kernel and the weights, so no ray passes through the surface. Several models are drawn
+Models are ray traced. By default f is sampled on a fine lattice in the cells near the surface
+(cells elsewhere are skipped by estimated gradient bounds); rays find the surface of the
+samples' interpolant and each hit is confirmed by exact Newton steps on the model, so a
+3000-constraint model renders at 512 × 512 in about a second. --bound guaranteed sphere traces
+instead with steps bounded by Lipschitz constants proved from the kernel and the weights, so
+that no ray can pass through the surface, at tens of times the cost. Anti-aliasing
+(--samples) traces its extra rays only in pixels that differ from a neighbour. Several models are drawn
 side by side in the same scene, each in its own colour, unless --union, --intersect or
 --subtract combines them into one solid (the first minus all the others for --subtract).
 A polygon mesh (.obj, .ply, .stl) is drawn with a z-buffer from the same default camera, so
@@ -76,7 +81,8 @@ pub(crate) struct RenderArgs {
     /// No checkered floor.
     #[arg(long)]
     no_ground: bool,
-    /// Bound on |∇f| that sizes each ray step: proved, estimated, or auto (proved if affordable).
+    /// How rays find the surface: through fine samples confirmed exactly (auto), or by sphere
+    /// tracing with proved or estimated bounds on |∇f|.
     #[arg(long, value_enum, default_value_t = BoundArg::Auto)]
     bound: BoundArg,
     /// Step by the paper's estimate instead: the largest |∇f| over N samples of the box.
@@ -90,12 +96,12 @@ pub(crate) struct RenderArgs {
 /// Step bounds by their command-line names.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
 enum BoundArg {
-    /// Proved where proof is affordable, else estimated (the render says which).
+    /// Fine samples near the surface, every hit confirmed by exact Newton steps (fast).
     Auto,
-    /// Always proved: no ray passes through the surface (slow for models with thousands of
-    /// constraints, whose weights are large and cancel).
+    /// Sphere tracing with proved steps: no ray passes through the surface (tens of times
+    /// slower for models with thousands of constraints, whose weights are large and cancel).
     Guaranteed,
-    /// 1.5 × the largest gradient at each cell's corners and centre.
+    /// Sphere tracing by 1.5 × the largest gradient at each cell's corners and centre.
     Estimated,
 }
 
@@ -205,15 +211,15 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
         let (image, stats) = rendered.map_err(bad)?;
         if verbose {
             eprintln!(
-                "traced {} rays, {} evaluations of f ({:.2} s bounds, {:.2} s tracing; steps {})",
+                "traced {} rays, {} evaluations of f ({:.2} s bounds and samples, {:.2} s tracing; {})",
                 stats.rays,
                 stats.evaluations,
                 stats.prepare_seconds,
                 stats.trace_seconds,
-                if stats.guaranteed {
-                    "proved"
-                } else {
-                    "estimated"
+                match settings.lipschitz {
+                    _ if stats.guaranteed => "steps proved",
+                    Lipschitz::Auto => "sampled, hits confirmed exactly",
+                    _ => "steps estimated",
                 }
             );
         }

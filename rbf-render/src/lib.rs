@@ -33,6 +33,8 @@
 //! assert!(png.len() > 100);
 //! ```
 
+mod band;
+mod band_trace;
 mod camera;
 mod csg;
 mod draw;

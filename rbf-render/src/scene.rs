@@ -65,6 +65,10 @@ pub struct RenderStats {
     pub guaranteed: bool,
 }
 
+/// Pixels whose colour differs from a neighbour's by more than this (linear RGB, any channel)
+/// are traced again with `samples` × `samples` rays.
+const EDGE: f64 = 0.02;
+
 /// What a ray hit first: nothing, the floor or an object (by index), with the distance along
 /// the ray.
 #[derive(Clone, Copy)]
@@ -120,13 +124,15 @@ pub fn render(
             Tracer::new(
                 models,
                 &o.shape,
-                settings.cells.clamp(1, 256),
+                settings.cells_for(camera.width.max(camera.height)),
                 settings.lipschitz,
+                true,
             )
         })
         .collect();
     let prepare_seconds = start.elapsed().as_secs_f64();
     let guaranteed = tracers.iter().all(Tracer::guaranteed);
+    let band_samples: u64 = tracers.iter().map(|t| t.band_samples() as u64).sum();
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for t in &tracers {
         // The floor goes under the surface itself, not under the traced box.
@@ -153,51 +159,88 @@ pub fn render(
         settings,
     };
     let start = Instant::now();
-    let s = settings.samples;
-    let rows: Vec<(Vec<[f32; 3]>, TraceCounts)> = (0..camera.height)
+    let (width, height) = (camera.width as usize, camera.height as usize);
+    // One ray through each pixel's centre, row by row.
+    let rows: Vec<(Vec<[f64; 3]>, TraceCounts)> = (0..camera.height)
         .into_par_iter()
         .map(|y| {
             let mut counts = TraceCounts::default();
-            let mut rays = Vec::with_capacity((camera.width * s * s) as usize);
-            for x in 0..camera.width {
-                for j in 0..s {
-                    for i in 0..s {
-                        rays.push(camera.ray(
-                            f64::from(x) + (f64::from(i) + 0.5) / f64::from(s),
-                            f64::from(y) + (f64::from(j) + 0.5) / f64::from(s),
-                        ));
-                    }
-                }
-            }
-            let colours = renderer.radiance(&rays, settings.reflections, &mut counts);
-            let per = (s * s) as usize;
-            let row = colours
-                .chunks(per)
-                .map(|c| {
-                    let mut sum = [0.0; 3];
-                    for v in c {
-                        for k in 0..3 {
-                            sum[k] += v[k];
-                        }
-                    }
-                    sum.map(|v| (v / per as f64) as f32)
-                })
+            let rays: Vec<Ray> = (0..camera.width)
+                .map(|x| camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5))
                 .collect();
-            (row, counts)
+            let colours = renderer.radiance(&rays, settings.reflections, &mut counts);
+            (colours, counts)
         })
         .collect();
-    let mut stats = RenderStats {
+    let mut counts = TraceCounts::default();
+    let mut colours: Vec<[f64; 3]> = Vec::with_capacity(width * height);
+    for (row, c) in rows {
+        colours.extend(row);
+        counts.rays += c.rays;
+        counts.evaluations += c.evaluations;
+    }
+    // Anti-aliasing: s × s rays in each pixel that differs from a neighbour.
+    let s = settings.samples;
+    if s > 1 {
+        let differs = |a: [f64; 3], b: [f64; 3]| (0..3).any(|d| (a[d] - b[d]).abs() > EDGE);
+        let edges: Vec<usize> = (0..width * height)
+            .filter(|&i| {
+                let (x, y) = (i % width, i / width);
+                (x > 0 && differs(colours[i], colours[i - 1]))
+                    || (x + 1 < width && differs(colours[i], colours[i + 1]))
+                    || (y > 0 && differs(colours[i], colours[i - width]))
+                    || (y + 1 < height && differs(colours[i], colours[i + width]))
+            })
+            .collect();
+        let refined: Vec<(Vec<[f64; 3]>, TraceCounts)> = edges
+            .par_chunks(64)
+            .map(|chunk| {
+                let mut counts = TraceCounts::default();
+                let mut rays = Vec::with_capacity(chunk.len() * (s * s) as usize);
+                for &i in chunk {
+                    let (x, y) = ((i % width) as f64, (i / width) as f64);
+                    for j in 0..s {
+                        for k in 0..s {
+                            rays.push(camera.ray(
+                                x + (f64::from(k) + 0.5) / f64::from(s),
+                                y + (f64::from(j) + 0.5) / f64::from(s),
+                            ));
+                        }
+                    }
+                }
+                let samples = renderer.radiance(&rays, settings.reflections, &mut counts);
+                let per = (s * s) as usize;
+                let means = samples
+                    .chunks(per)
+                    .map(|c| {
+                        let mut sum = [0.0; 3];
+                        for v in c {
+                            for d in 0..3 {
+                                sum[d] += v[d] / per as f64;
+                            }
+                        }
+                        sum
+                    })
+                    .collect();
+                (means, counts)
+            })
+            .collect();
+        for (chunk, (means, c)) in edges.chunks(64).zip(refined) {
+            for (&i, mean) in chunk.iter().zip(means) {
+                colours[i] = mean;
+            }
+            counts.rays += c.rays;
+            counts.evaluations += c.evaluations;
+        }
+    }
+    let pixels: Vec<[f32; 3]> = colours.iter().map(|c| c.map(|v| v as f32)).collect();
+    let stats = RenderStats {
         prepare_seconds,
         guaranteed,
-        ..Default::default()
+        rays: counts.rays,
+        evaluations: counts.evaluations + band_samples,
+        trace_seconds: start.elapsed().as_secs_f64(),
     };
-    let mut pixels = Vec::with_capacity((camera.width * camera.height) as usize);
-    for (row, counts) in rows {
-        pixels.extend(row);
-        stats.rays += counts.rays;
-        stats.evaluations += counts.evaluations;
-    }
-    stats.trace_seconds = start.elapsed().as_secs_f64();
     Ok((
         Image::from_pixels(camera.width, camera.height, pixels),
         stats,
@@ -229,8 +272,9 @@ pub fn surface_bounds(
         let tracer = Tracer::new(
             models,
             &o.shape,
-            settings.cells.clamp(1, 256),
+            settings.cells_for(0),
             settings.lipschitz,
+            false,
         );
         if let Some((a, b)) = tracer.occupied_bounds() {
             for d in 0..3 {
@@ -266,8 +310,9 @@ pub fn first_hits(
     let tracer = Tracer::new(
         models,
         shape,
-        settings.cells.clamp(1, 256),
+        settings.cells_for(0),
         settings.lipschitz,
+        true,
     );
     let limits = vec![f64::INFINITY; rays.len()];
     Ok(tracer.trace(rays, &limits, &mut TraceCounts::default()))
@@ -318,6 +363,25 @@ impl Renderer<'_, '_> {
         // Surface points: position, outward normal, colour, reflectivity.
         let mut surfaces: Vec<(usize, Vec3, Vec3, [f64; 3], f64)> = Vec::new();
         let mut out: Vec<[f64; 3]> = rays.iter().map(|r| self.sky(r)).collect();
+        // Each solid's normals at its hits, evaluated together.
+        let mut normals: Vec<std::vec::IntoIter<Vec3>> = (0..self.tracers.len())
+            .map(|k| {
+                let points: Vec<Vec3> = hits
+                    .iter()
+                    .zip(rays)
+                    .filter_map(|(hit, ray)| match *hit {
+                        Hit::Object(o, t) if o == k => Some(along(ray.origin, ray.direction, t)),
+                        _ => None,
+                    })
+                    .collect();
+                if points.is_empty() {
+                    Vec::new().into_iter()
+                } else {
+                    counts.evaluations += points.len() as u64;
+                    self.tracers[k].normals(&points).into_iter()
+                }
+            })
+            .collect();
         for (i, (hit, ray)) in hits.iter().zip(rays).enumerate() {
             match *hit {
                 Hit::Nothing => {}
@@ -327,7 +391,7 @@ impl Renderer<'_, '_> {
                 }
                 Hit::Object(k, t) => {
                     let p = along(ray.origin, ray.direction, t);
-                    let mut n = self.tracers[k].normal(p);
+                    let mut n = normals[k].next().unwrap_or([0.0, 1.0, 0.0]);
                     if dot(n, ray.direction) > 0.0 {
                         // Seen from inside (a cut-open solid): light the side we see.
                         n = scale(n, -1.0);

@@ -72,7 +72,8 @@ pub struct RenderSettings {
     /// Which bound on |∇f| sizes the ray steps: proved, estimated, or sampled; `Auto` by
     /// default.
     pub lipschitz: Lipschitz,
-    /// Cells along the longest side of each solid's box.
+    /// Cells along the longest side of each solid's box; 0 (the default) picks 32, or for
+    /// [`Lipschitz::Auto`] one per 16 pixels of the image's longer side, 8 to 64.
     pub cells: usize,
 }
 
@@ -86,7 +87,20 @@ impl Default for RenderSettings {
             lights: None,
             background: [[0.45, 0.60, 0.85], [0.92, 0.94, 0.97]],
             lipschitz: Lipschitz::Auto,
-            cells: 32,
+            cells: 0,
+        }
+    }
+}
+
+impl RenderSettings {
+    /// The cells of a solid's box for an image whose longer side is `side` pixels (0: none).
+    pub(crate) fn cells_for(&self, side: u32) -> usize {
+        match (self.cells, side) {
+            (0, side) if side > 0 && self.lipschitz == Lipschitz::Auto => {
+                (side as usize / 16).clamp(8, 64)
+            }
+            (0, _) => 32,
+            (cells, _) => cells.min(256),
         }
     }
 }

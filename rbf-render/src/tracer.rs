@@ -8,6 +8,7 @@
 use rayon::prelude::*;
 use rbf_core::{InterpolantView, Kernel};
 
+use crate::band::Band;
 use crate::camera::Ray;
 use crate::csg::Csg;
 use rbf_core::vec3::{Vec3, along, dot, norm};
@@ -17,10 +18,12 @@ use crate::slope::{Slope, Spread, estimate_cells, sampled_slope};
 /// Which Lipschitz constant steps the rays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Lipschitz {
-    /// Proved, when proof is affordable: [`Lipschitz::Guaranteed`] unless its bounds near the
-    /// surface are more than 20 times the estimated slopes (fitted models with thousands of
-    /// large, cancelling weights), then [`Lipschitz::Estimated`]. [`crate::RenderStats`] says
-    /// which was used.
+    /// Fast, the default: cells skipped as [`Lipschitz::Estimated`] does, then F sampled on a
+    /// lattice four times finer in the cells that remain; rays find the zeros of its trilinear
+    /// interpolant without evaluating the models, and each is confirmed (or dropped) by exact
+    /// Newton steps. Where the interpolant comes within its estimated error (from second
+    /// differences of the samples) of zero without crossing, the ray is checked exactly too. A
+    /// feature thinner than the fine lattice and away from its samples can be missed.
     Auto,
     /// Proved from the kernel's derivatives and the weights: per cell for skipping empty space
     /// (see [`rbf_core::InterpolantView::ball_bound`]) and, for r³, per point from the exact
@@ -41,15 +44,17 @@ const MAX_STEPS: usize = 4000;
 
 /// A solid prepared for tracing.
 pub(crate) struct Tracer<'s, 'm> {
-    views: &'s [InterpolantView<'m, f64, 3>],
-    csg: &'s Csg,
-    used: Vec<usize>,
-    lo: Vec3,
-    hi: Vec3,
+    pub(crate) views: &'s [InterpolantView<'m, f64, 3>],
+    pub(crate) csg: &'s Csg,
+    pub(crate) used: Vec<usize>,
+    pub(crate) lo: Vec3,
+    pub(crate) hi: Vec3,
     n: [usize; 3],
-    cell: Vec3,
+    pub(crate) cell: Vec3,
     /// Per cell: the solid's Lipschitz constant, or 0 when the surface cannot be in the cell.
-    lipschitz: Vec<f64>,
+    pub(crate) lipschitz: Vec<f64>,
+    /// F sampled finely in the cells that can hold surface ([`Lipschitz::Auto`]).
+    band: Option<Band>,
     /// Per model and cell: the model's Lipschitz constant (models with `local` only).
     cell_lipschitz: Vec<Vec<f64>>,
     /// Per model: whether its steps use cell bounds (kernels without a per-point bound).
@@ -74,12 +79,14 @@ pub struct TraceCounts {
 
 impl<'s, 'm> Tracer<'s, 'm> {
     /// Prepares `csg` over the models `views`, with about `cells` cells along the box's longest
-    /// side.
+    /// side; with [`Lipschitz::Auto`] and `sample_band`, samples F finely in the cells that can
+    /// hold surface and traces through those samples.
     pub(crate) fn new(
         views: &'s [InterpolantView<'m, f64, 3>],
         csg: &'s Csg,
         cells: usize,
         mode: Lipschitz,
+        sample_band: bool,
     ) -> Self {
         let used = csg.models();
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -114,25 +121,24 @@ impl<'s, 'm> Tracer<'s, 'm> {
             a > 0.0 || b < 0.0
         };
         // Proved slopes per model and cell, and whether each cell is proved empty.
-        let proved: Vec<(bool, Vec<f64>)> =
-            if matches!(mode, Lipschitz::Guaranteed | Lipschitz::Auto) {
-                (0..cells_total)
-                    .into_par_iter()
-                    .map(|i| {
-                        let centre = centre_of(i);
-                        let mut bounds = vec![(0.0, 0.0); views.len()];
-                        let mut slopes = vec![0.0; views.len()];
-                        for &m in &used {
-                            let b = views[m].ball_bound(&centre, radius);
-                            bounds[m] = (b.value - b.change, b.value + b.change);
-                            slopes[m] = b.lipschitz;
-                        }
-                        (interval_empty(&bounds), slopes)
-                    })
-                    .collect()
-            } else {
-                Vec::new()
-            };
+        let proved: Vec<(bool, Vec<f64>)> = if mode == Lipschitz::Guaranteed {
+            (0..cells_total)
+                .into_par_iter()
+                .map(|i| {
+                    let centre = centre_of(i);
+                    let mut bounds = vec![(0.0, 0.0); views.len()];
+                    let mut slopes = vec![0.0; views.len()];
+                    for &m in &used {
+                        let b = views[m].ball_bound(&centre, radius);
+                        bounds[m] = (b.value - b.change, b.value + b.change);
+                        slopes[m] = b.lipschitz;
+                    }
+                    (interval_empty(&bounds), slopes)
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         let estimated_empty = |i: usize| {
             let mut bounds = vec![(0.0, 0.0); views.len()];
             for &m in &used {
@@ -141,25 +147,11 @@ impl<'s, 'm> Tracer<'s, 'm> {
             }
             interval_empty(&bounds)
         };
+        // Auto: cells skipped by the estimate, then the sampled band (or, without one, sphere
+        // tracing by the estimate).
+        let sampled_band = sample_band && mode == Lipschitz::Auto;
         let mode = match mode {
-            Lipschitz::Auto => {
-                // How loose are the proofs where the surface may be?
-                let mut ratios: Vec<f64> = (0..cells_total)
-                    .filter(|&i| !estimated_empty(i))
-                    .flat_map(|i| {
-                        used.iter()
-                            .map(|&m| proved[i].1[m] / estimated[m][i].max(1e-300))
-                            .collect::<Vec<_>>()
-                    })
-                    .collect();
-                ratios.sort_by(f64::total_cmp);
-                let median = ratios.get(ratios.len() / 2).copied().unwrap_or(1.0);
-                if median > 20.0 {
-                    Lipschitz::Estimated
-                } else {
-                    Lipschitz::Guaranteed
-                }
-            }
+            Lipschitz::Auto => Lipschitz::Estimated,
             m => m,
         };
         let spread: Vec<Option<Spread>> = views
@@ -217,6 +209,8 @@ impl<'s, 'm> Tracer<'s, 'm> {
                 if empty { 0.0 } else { slope.max(1e-300) }
             })
             .collect();
+        let band =
+            sampled_band.then(|| Band::new(views, csg, lo, cell, n, |i| lipschitz[i] != 0.0));
         Self {
             views,
             csg,
@@ -226,6 +220,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
             n,
             cell,
             lipschitz,
+            band,
             cell_lipschitz,
             local,
             sampled,
@@ -271,7 +266,26 @@ impl<'s, 'm> Tracer<'s, 'm> {
         })
     }
 
-    fn cell_of(&self, p: Vec3) -> usize {
+    /// The longest side of the traced box.
+    pub(crate) fn size(&self) -> f64 {
+        (0..3).map(|d| self.hi[d] - self.lo[d]).fold(0.0, f64::max)
+    }
+
+    /// The cell's position along x, y, z.
+    pub(crate) fn cell_coords(&self, index: usize) -> [usize; 3] {
+        [
+            index / (self.n[1] * self.n[2]),
+            (index / self.n[2]) % self.n[1],
+            index % self.n[2],
+        ]
+    }
+
+    /// Evaluations spent sampling the band, if there is one.
+    pub(crate) fn band_samples(&self) -> usize {
+        self.band.as_ref().map_or(0, |b| b.samples)
+    }
+
+    pub(crate) fn cell_of(&self, p: Vec3) -> usize {
         let c: [usize; 3] = core::array::from_fn(|d| {
             (((p[d] - self.lo[d]) / self.cell[d]).floor().max(0.0) as usize).min(self.n[d] - 1)
         });
@@ -279,7 +293,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
     }
 
     /// Where the ray leaves the cell it is in at t.
-    fn cell_exit(&self, ray: &Ray, t: f64, index: usize) -> f64 {
+    pub(crate) fn cell_exit(&self, ray: &Ray, t: f64, index: usize) -> f64 {
         let c = [
             index / (self.n[1] * self.n[2]),
             (index / self.n[2]) % self.n[1],
@@ -297,16 +311,28 @@ impl<'s, 'm> Tracer<'s, 'm> {
         exit.max(t)
     }
 
-    /// The solid's outward unit normal at p, from the gradient of the model on whose surface
-    /// p lies.
-    pub(crate) fn normal(&self, p: Vec3) -> Vec3 {
-        let mut values = vec![0.0; self.views.len()];
+    /// The solid's outward unit normals at the points, from the gradient of the model on
+    /// whose surface each lies, evaluated together.
+    pub(crate) fn normals(&self, points: &[Vec3]) -> Vec<Vec3> {
+        let models = self.views.len();
+        let mut values = vec![Vec::new(); models];
+        let mut gradients = vec![Vec::new(); models];
         for &m in &self.used {
-            values[m] = self.views[m].value(&p);
+            values[m] = vec![0.0; points.len()];
+            gradients[m] = vec![[0.0; 3]; points.len()];
+            // Equal lengths by construction.
+            let _ = self.views[m].values_and_gradients(points, &mut values[m], &mut gradients[m]);
         }
-        let (_, m, sign) = self.csg.active(&values);
-        let g = self.views[m].gradient(&p);
-        rbf_core::vec3::normalize(rbf_core::vec3::scale(g, -sign))
+        let mut here = vec![0.0; models];
+        (0..points.len())
+            .map(|j| {
+                for &m in &self.used {
+                    here[m] = values[m][j];
+                }
+                let (_, m, sign) = self.csg.active(&here);
+                rbf_core::vec3::normalize(rbf_core::vec3::scale(gradients[m][j], -sign))
+            })
+            .collect()
     }
 
     /// How far f_m can move from its value at a point within distance s, for the slope data
@@ -368,6 +394,9 @@ impl<'s, 'm> Tracer<'s, 'm> {
         limits: &[f64],
         counts: &mut TraceCounts,
     ) -> Vec<Option<f64>> {
+        if let Some(band) = &self.band {
+            return self.trace_band(band, rays, limits, counts);
+        }
         let mut hits = vec![None; rays.len()];
         let mut t = vec![0.0; rays.len()];
         let mut end = vec![0.0; rays.len()];
@@ -516,7 +545,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
 
     /// Whether rays are stepped by proved bounds.
     pub(crate) fn guaranteed(&self) -> bool {
-        self.mode == Lipschitz::Guaranteed
+        self.mode == Lipschitz::Guaranteed && self.band.is_none()
     }
 
     fn cell_min(&self) -> f64 {
