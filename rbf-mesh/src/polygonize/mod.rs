@@ -11,6 +11,7 @@ mod continuation;
 mod grid;
 mod lattice;
 mod roots;
+mod simplify;
 
 use rbf_core::{ConstraintKind, InterpolantView, Model};
 

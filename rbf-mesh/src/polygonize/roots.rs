@@ -5,6 +5,7 @@ use rayon::prelude::*;
 use rbf_core::InterpolantView;
 
 use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, edge_of};
+use super::simplify;
 use crate::{MeshError, TriMesh};
 
 /// Keeps vertices this fraction of an edge away from its ends, so that no triangle collapses
@@ -84,7 +85,30 @@ pub(crate) fn assemble(
             done: false,
         })
         .collect();
-    let mut pending: Vec<usize> = (0..searches.len()).collect();
+    // Collapse first, at the secant points (within a small fraction of a cell of the roots),
+    // so that root finding runs on the vertices that stay.
+    let index = |k: u64| {
+        unique
+            .binary_search_by_key(&k, |e| e.0)
+            .map_or(0, |i| i as u32)
+    };
+    let triangles: Vec<[u32; 3]> = triangles.par_iter().map(|t| t.map(index)).collect();
+    let estimates: Vec<[f64; 3]> = searches
+        .iter()
+        .zip(&ends)
+        .map(|(s, &e)| at(e, s.t))
+        .collect();
+    // Marching cubes puts one vertex on each crossed axis edge.
+    let axis_edges = unique
+        .iter()
+        .filter(|e| matches!(e.0 & 7, 1 | 2 | 4))
+        .count();
+    let target = axis_edges + axis_edges / 8;
+    let (merged, triangles) = simplify::collapse(&estimates, triangles, lattice.h, target);
+    let kept: Vec<usize> = (0..merged.len())
+        .filter(|&v| merged[v] as usize == v)
+        .collect();
+    let mut pending: Vec<usize> = kept.clone();
     for round in 0..iterations.max(1) {
         let points: Vec<[f64; 3]> = pending
             .iter()
@@ -151,10 +175,8 @@ pub(crate) fn assemble(
             break;
         }
     }
-    let positions: Vec<[f64; 3]> = searches
-        .iter()
-        .zip(&ends)
-        .map(|(s, &e)| at(e, s.t))
+    let positions: Vec<[f64; 3]> = (0..merged.len())
+        .map(|v| at(ends[v], searches[v].t))
         .collect();
     let normals: Vec<[f64; 3]> = searches
         .iter()
@@ -167,11 +189,25 @@ pub(crate) fn assemble(
             }
         })
         .collect();
-    let index = |k: u64| {
-        unique
-            .binary_search_by_key(&k, |e| e.0)
-            .map_or(0, |i| i as u32)
-    };
-    let triangles: Vec<[u32; 3]> = triangles.par_iter().map(|t| t.map(index)).collect();
-    TriMesh::new(positions, triangles)?.with_normals(normals)
+    let triangles: Vec<[u32; 3]> = triangles
+        .into_iter()
+        .map(|t| t.map(|v| merged[v as usize]))
+        .collect();
+    // Root finding moved the vertices a little: collapse what became short, flip what became
+    // a cap (no evaluation needed).
+    let (merged, triangles) = simplify::collapse(&positions, triangles, lattice.h, kept.len());
+    let kept: Vec<usize> = kept
+        .into_iter()
+        .filter(|&v| merged[v] as usize == v)
+        .collect();
+    let mut new_index = vec![u32::MAX; merged.len()];
+    for (i, &v) in kept.iter().enumerate() {
+        new_index[v] = i as u32;
+    }
+    let triangles: Vec<[u32; 3]> = triangles
+        .into_iter()
+        .map(|t| t.map(|v| new_index[merged[v as usize] as usize]))
+        .collect();
+    TriMesh::new(kept.iter().map(|&v| positions[v]).collect(), triangles)?
+        .with_normals(kept.iter().map(|&v| normals[v]).collect())
 }

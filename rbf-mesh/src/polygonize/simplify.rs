@@ -1,0 +1,324 @@
+//! Fewer and better triangles than the Kuhn lattice gives: its six tetrahedra per cube put a
+//! vertex on every crossed diagonal as well as on the crossed axis edges (about twice the
+//! vertices of marching cubes on the same lattice), and where the surface passes near a lattice
+//! point they crowd around it, within a hair of each other, with needle triangles between them.
+//!
+//! Edges are collapsed shortest first, one end merged into the other (no vertex moves, so every
+//! vertex stays on the surface where root finding puts it). A collapse is made only when the
+//! link condition holds (the two ends share exactly the two neighbours across the edge), which
+//! keeps a closed manifold closed and its topology unchanged; when no remaining triangle turns
+//! by more than 60° or is left with an angle below [`MIN_ANGLE`] that it did not already have;
+//! and never at the mesh's border (where the box cuts an open surface). It stops when the
+//! vertices are down to the target (about marching cubes' count) and every edge shorter than a
+//! fraction of the cell is gone, or no allowed collapse remains.
+
+use rayon::prelude::*;
+use rbf_core::vec3::{Vec3, cross, dot, norm, sub};
+
+/// Smallest angle, in degrees, that a collapse may create.
+pub(crate) const MIN_ANGLE: f64 = 10.0;
+/// Edges shorter than this fraction of a cell are collapsed whatever the vertex count.
+const SHORT: f64 = 0.2;
+/// No edge longer than this fraction of a cell is collapsed.
+const LONGEST: f64 = 1.0;
+
+/// Collapses edges of the mesh until at most `target` vertices remain (or no allowed collapse
+/// of an edge shorter than [`LONGEST`] cells does). Returns, per old vertex, the vertex it was
+/// merged into (itself if kept), and the triangles left (on old indices).
+pub(crate) fn collapse(
+    positions: &[Vec3],
+    triangles: Vec<[u32; 3]>,
+    cell: f64,
+    target: usize,
+) -> (Vec<u32>, Vec<[u32; 3]>) {
+    let n = positions.len();
+    let mut triangles = triangles;
+    let mut alive = vec![true; triangles.len()];
+    let mut around: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for (t, tri) in triangles.iter().enumerate() {
+        for &v in tri {
+            around[v as usize].push(t as u32);
+        }
+    }
+    let mut merged: Vec<u32> = (0..n as u32).collect();
+    let mut vertices = around.iter().filter(|a| !a.is_empty()).count();
+    // Collapses, then flips of what collapses cannot reach, then collapses of what flips freed.
+    for _ in 0..2 {
+        collapse_edges(
+            positions,
+            cell,
+            target,
+            &mut triangles,
+            &mut alive,
+            &mut around,
+            &mut merged,
+            &mut vertices,
+        );
+        flip_slivers(positions, &mut triangles, &alive, &mut around);
+    }
+    // Follow chains of merges to the vertex that survived.
+    for v in 0..n {
+        let mut r = merged[v];
+        while merged[r as usize] != r {
+            r = merged[r as usize];
+        }
+        merged[v] = r;
+    }
+    let kept = triangles
+        .into_iter()
+        .zip(alive)
+        .filter_map(|(t, a)| a.then_some(t))
+        .collect();
+    (merged, kept)
+}
+
+/// Collapses edges, shortest first (see the module's documentation).
+#[allow(clippy::too_many_arguments)]
+fn collapse_edges(
+    positions: &[Vec3],
+    cell: f64,
+    target: usize,
+    triangles: &mut [[u32; 3]],
+    alive: &mut [bool],
+    around: &mut [Vec<u32>],
+    merged: &mut [u32],
+    vertices: &mut usize,
+) {
+    let length = |a: u32, b: u32| norm(sub(positions[a as usize], positions[b as usize]));
+    let short = SHORT * cell;
+    // Edges by length, sorted once: an edge made by a collapse waits for the next call.
+    let longest = if *vertices <= target {
+        short
+    } else {
+        LONGEST * cell
+    };
+    let mut edges: Vec<(f64, u32, u32)> = triangles
+        .iter()
+        .zip(alive.iter())
+        .filter(|(_, a)| **a)
+        .flat_map(|(tri, _)| (0..3).map(move |k| (tri[k], tri[(k + 1) % 3])))
+        // Each inner edge appears once each way round; border edges are refused anyway.
+        .filter(|&(a, b)| a < b)
+        .map(|(a, b)| (length(a, b), a, b))
+        .filter(|e| e.0 < longest)
+        .collect();
+    edges.par_sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+    for (l, a, b) in edges {
+        if *vertices <= target && l >= short {
+            break;
+        }
+        if merged[a as usize] != a || merged[b as usize] != b {
+            continue;
+        }
+        for (from, to) in [(a, b), (b, a)] {
+            if let Some(across) =
+                collapsible(positions, cell, &*triangles, &*alive, &*around, from, to)
+            {
+                // Merge `from` into `to`.
+                for &t in &across {
+                    alive[t as usize] = false;
+                }
+                let moved = std::mem::take(&mut around[from as usize]);
+                for &t in &moved {
+                    if !alive[t as usize] {
+                        continue;
+                    }
+                    for v in triangles[t as usize].iter_mut() {
+                        if *v == from {
+                            *v = to;
+                        }
+                    }
+                    around[to as usize].push(t);
+                }
+                around[to as usize].retain(|&t| alive[t as usize]);
+                merged[from as usize] = to;
+                *vertices -= 1;
+                break;
+            }
+        }
+    }
+}
+
+/// The vertices joined to v by an edge.
+fn neighbours(triangles: &[[u32; 3]], alive: &[bool], around: &[Vec<u32>], v: u32) -> Vec<u32> {
+    let mut out: Vec<u32> = around[v as usize]
+        .iter()
+        .filter(|&&t| alive[t as usize])
+        .flat_map(|&t| triangles[t as usize])
+        .filter(|&w| w != v)
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// If merging `from` into `to` is allowed, the two triangles that vanish.
+fn collapsible(
+    positions: &[Vec3],
+    cell: f64,
+    triangles: &[[u32; 3]],
+    alive: &[bool],
+    around: &[Vec<u32>],
+    from: u32,
+    to: u32,
+) -> Option<[u32; 2]> {
+    let live = |t: &&u32| alive[**t as usize];
+    let shared: Vec<u32> = around[from as usize]
+        .iter()
+        .filter(live)
+        .copied()
+        .filter(|&t| triangles[t as usize].contains(&to))
+        .collect();
+    if shared.len() != 2 {
+        return None; // the border, or not an edge
+    }
+    // Every edge at `from` must have two triangles (no border vertex is removed): a closed fan
+    // has as many triangles as neighbours, an open one a neighbour more.
+    let ring = neighbours(triangles, alive, around, from);
+    if ring.len() != around[from as usize].iter().filter(live).count() {
+        return None;
+    }
+    // Link condition: the ends' common neighbours are the two vertices across the edge.
+    let opposite: Vec<u32> = shared
+        .iter()
+        .map(|&t| {
+            triangles[t as usize]
+                .into_iter()
+                .find(|&w| w != from && w != to)
+                .unwrap_or(from)
+        })
+        .collect();
+    let theirs = neighbours(triangles, alive, around, to);
+    let common = ring
+        .iter()
+        .filter(|w| theirs.binary_search(w).is_ok())
+        .count();
+    if common != 2 || opposite[0] == opposite[1] {
+        return None;
+    }
+    // No triangle may turn over or become a sliver. A triangle too small to have a reliable
+    // normal of its own is compared with the area-weighted normal around `from`.
+    let p = |v: u32| positions[v as usize];
+    let normal_of = |t: [u32; 3]| cross(sub(p(t[1]), p(t[0])), sub(p(t[2]), p(t[0])));
+    let mut around_normal = [0.0; 3];
+    for &t in around[from as usize].iter().filter(live) {
+        let n = normal_of(triangles[t as usize]);
+        for d in 0..3 {
+            around_normal[d] += n[d];
+        }
+    }
+    let tiny = 1e-8 * cell * cell;
+    let short = norm(sub(p(from), p(to))) < SHORT * cell;
+    for &t in around[from as usize].iter().filter(live) {
+        if shared.contains(&t) {
+            continue;
+        }
+        let old = triangles[t as usize];
+        let new = old.map(|v| if v == from { to } else { v });
+        let (mut n_old, n_new) = (normal_of(old), normal_of(new));
+        if norm(n_old) < tiny {
+            n_old = around_normal;
+        }
+        let (l_old, l_new) = (norm(n_old), norm(n_new));
+        if !(l_new > 0.0) || dot(n_old, n_new) < 0.5 * l_old * l_new {
+            return None;
+        }
+        // A short edge's collapse moves a vertex too little to matter; longer ones must not
+        // make slivers.
+        if !short {
+            let before = largest_cosine(old.map(p));
+            if largest_cosine(new.map(p)) > min_cosine().max(before) {
+                return None;
+            }
+        }
+    }
+    Some([shared[0], shared[1]])
+}
+
+/// Flips the longest edge of each triangle with an angle below [`MIN_ANGLE`] (a cap: one
+/// vertex near its opposite edge, which no short edge can remove) when the flip raises the
+/// smallest angle of the pair, turns neither triangle by more than 60° and makes no edge twice.
+fn flip_slivers(
+    positions: &[Vec3],
+    triangles: &mut [[u32; 3]],
+    alive: &[bool],
+    around: &mut [Vec<u32>],
+) {
+    let p = |v: u32| positions[v as usize];
+    let normal_of = |t: [u32; 3]| cross(sub(p(t[1]), p(t[0])), sub(p(t[2]), p(t[0])));
+    for _pass in 0..3 {
+        let mut flipped = 0;
+        for t1 in 0..triangles.len() {
+            if !alive[t1] || largest_cosine(triangles[t1].map(p)) <= min_cosine() {
+                continue;
+            }
+            // The longest edge a → b, and c across it.
+            let tri = triangles[t1];
+            let k = (0..3)
+                .max_by(|&i, &j| {
+                    let l = |k: usize| norm(sub(p(tri[(k + 1) % 3]), p(tri[k])));
+                    l(i).total_cmp(&l(j))
+                })
+                .unwrap_or(0);
+            let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+            let Some(&t2) = around[b as usize].iter().find(|&&t| {
+                let o = triangles[t as usize];
+                t as usize != t1
+                    && alive[t as usize]
+                    && (0..3).any(|i| o[i] == b && o[(i + 1) % 3] == a)
+            }) else {
+                continue;
+            };
+            let t2 = t2 as usize;
+            let Some(d) = triangles[t2].into_iter().find(|&w| w != a && w != b) else {
+                continue;
+            };
+            let exists = around[c as usize]
+                .iter()
+                .any(|&t| alive[t as usize] && triangles[t as usize].contains(&d));
+            if exists || c == d {
+                continue;
+            }
+            let (new1, new2) = ([c, a, d], [d, b, c]);
+            let old_normal = {
+                let (x, y) = (normal_of(tri), normal_of(triangles[t2]));
+                [x[0] + y[0], x[1] + y[1], x[2] + y[2]]
+            };
+            let turned = [new1, new2].iter().any(|&t| {
+                let n = normal_of(t);
+                !(dot(n, old_normal) > 0.5 * norm(n) * norm(old_normal))
+            });
+            let before = largest_cosine(tri.map(p)).max(largest_cosine(triangles[t2].map(p)));
+            let after = largest_cosine(new1.map(p)).max(largest_cosine(new2.map(p)));
+            if turned || after >= before {
+                continue;
+            }
+            triangles[t1] = new1;
+            triangles[t2] = new2;
+            around[a as usize].retain(|&t| t as usize != t2);
+            around[b as usize].retain(|&t| t as usize != t1);
+            around[c as usize].push(t2 as u32);
+            around[d as usize].push(t1 as u32);
+            flipped += 1;
+        }
+        if flipped == 0 {
+            break;
+        }
+    }
+}
+
+/// The cosine of [`MIN_ANGLE`].
+fn min_cosine() -> f64 {
+    MIN_ANGLE.to_radians().cos()
+}
+
+/// The cosine of a triangle's smallest angle (1 for a degenerate one).
+pub(crate) fn largest_cosine(t: [Vec3; 3]) -> f64 {
+    (0..3)
+        .map(|k| {
+            let (a, b) = (sub(t[(k + 1) % 3], t[k]), sub(t[(k + 2) % 3], t[k]));
+            let c = dot(a, b) / (dot(a, a) * dot(b, b)).sqrt();
+            if c.is_finite() { c } else { 1.0 }
+        })
+        .fold(-1.0, f64::max)
+}
