@@ -259,7 +259,7 @@ impl Model {
         mesh_arrays(py, &mesh)
     }
 
-    /// A sphere-traced picture: an (height, width, 3) uint8 sRGB array. The camera orbits the
+    /// A ray-traced picture: an (height, width, 3) uint8 sRGB array. The camera orbits the
     /// surface's box (``azimuth``, ``elevation`` in degrees); ``samples`` rays per pixel side
     /// (antialiasing), ``shadows`` on the ground.
     #[pyo3(signature = (width=640, height=480, *, azimuth=30.0, elevation=20.0, samples=2, shadows=false, ground=true))]

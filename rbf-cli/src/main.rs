@@ -91,7 +91,7 @@ enum Command {
     /// Sample a model's surface evenly with floaters (positions and normals).
     #[command(after_help = floaters::HELP)]
     Floaters(floaters::FloatersArgs),
-    /// Render models (sphere traced, with CSG, shadows, reflections) or a mesh to PNG.
+    /// Render models (ray traced, with CSG, shadows, reflections) or a mesh to PNG.
     #[command(after_help = render::HELP)]
     Render(render::RenderArgs),
     /// Plot a 2D model's curve and its constraints to PNG.

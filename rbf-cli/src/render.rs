@@ -1,4 +1,4 @@
-//! `rbf render`: pictures of models (sphere traced, with CSG) or of polygon meshes.
+//! `rbf render`: pictures of models (ray traced, with CSG) or of polygon meshes.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;

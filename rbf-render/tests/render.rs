@@ -1,4 +1,5 @@
-//! Sphere tracing, CSG and the rasterizer against analytic answers and each other.
+//! Ray tracing (sampled band and proved sphere tracing), CSG and the rasterizer against analytic
+//! answers, a dense ray march and each other.
 
 use proptest::prelude::*;
 use rbf_core::{Constraint, FitSettings, InterpolantView, Kernel, fit};
