@@ -96,7 +96,8 @@ pub(crate) fn convert<'py>(
             let settings = IterativeSettings {
                 resolution,
                 max_iterations,
-                max_constraints: max_constraints.unwrap_or(5000),
+                max_constraints: max_constraints
+                    .unwrap_or(IterativeSettings::default().max_constraints),
                 lambda: smoothing,
                 ..Default::default()
             };
@@ -111,7 +112,14 @@ pub(crate) fn convert<'py>(
             report.set_item("best_iteration", r.best)?;
             report.set_item("max_error_voxels", best.max_error)?;
             report.set_item("rms_error_voxels", best.rms_error)?;
-            report.set_item("constraints", best.boundary + best.interior + best.exterior)?;
+            report.set_item("constraints", model.constraints.len())?;
+            if let Some(t) = r.topology {
+                report.set_item("mesh_genus", t.goal_genus)?;
+                report.set_item("mesh_components", t.goal_components)?;
+                report.set_item("genus", t.genus)?;
+                report.set_item("components", t.components)?;
+                report.set_item("topology_kept", t.agrees())?;
+            }
             model
         }
         other => {

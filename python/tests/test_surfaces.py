@@ -98,6 +98,9 @@ def test_convert_a_mesh_both_ways_and_mesh_files(tmp_path):
     by_normals = rbfsurf.convert(V, F, method="normals", max_constraints=600)
     m, report = rbfsurf.convert(V, F, method="iterative", resolution=32, return_report=True)
     assert report["watertight"] and report["max_error_voxels"] < 2.0
+    # The topology check: the torus mesh's genus 1 and one component, kept.
+    assert (report["mesh_genus"], report["mesh_components"]) == (1, 1)
+    assert (report["genus"], report["components"], report["topology_kept"]) == (1, 1, True)
     for model in (by_normals, m):
         W, G = model.polygonize(32, method="grid")
         assert mesh_topology(W, G) == (True, 1, 0)

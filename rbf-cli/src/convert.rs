@@ -6,8 +6,8 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rbf_convert::{
-    ConvertError, IterativeReport, IterativeSettings, NormalSettings, convert_iterative,
-    convert_normals,
+    ConvertError, IterativeReport, IterativeSettings, NormalSettings, TopologyReport,
+    convert_iterative, convert_normals,
 };
 use rbf_core::NormalOffset;
 
@@ -43,7 +43,7 @@ pub(crate) struct ConvertArgs {
     /// Conversion method.
     #[arg(long, value_enum, default_value_t = Method::Iterative)]
     method: Method,
-    /// Most constraints placed [default: 5000 iterative; every vertex (two rows each) normals,
+    /// Most constraints placed [default: 4000 iterative; every vertex (two rows each) normals,
     /// or 5000 with --tolerance]; fewer vertices than the mesh has are spread evenly.
     #[arg(long, value_name = "N")]
     max_constraints: Option<usize>,
@@ -141,7 +141,9 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
             let settings = IterativeSettings {
                 resolution: args.resolution,
                 max_iterations: args.max_iterations,
-                max_constraints: args.max_constraints.unwrap_or(5000),
+                max_constraints: args
+                    .max_constraints
+                    .unwrap_or(IterativeSettings::default().max_constraints),
                 lambda: args.lambda,
                 ..Default::default()
             };
@@ -184,7 +186,7 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                     .saturating_sub(1)
                     .min(report.iterations.len() - 1)];
                 eprintln!(
-                    "{} × {} × {} voxels{}; best of {} iterations: {}: max error {:.2} voxels, RMS {:.2}, {} boundary / {} interior / {} exterior constraints; {:.1} s; wrote {}",
+                    "{} × {} × {} voxels{}; best of {} iterations: {}: max error {:.2} voxels, RMS {:.2}, {} boundary / {} interior / {} exterior constraints{}; {:.1} s; wrote {}",
                     report.shape[0],
                     report.shape[1],
                     report.shape[2],
@@ -200,6 +202,9 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                     best.boundary,
                     best.interior,
                     best.exterior,
+                    report
+                        .topology
+                        .map_or(String::new(), |t| topology_summary(&t)),
                     start.elapsed().as_secs_f64(),
                     args.output.display()
                 );
@@ -207,6 +212,30 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
         }
     }
     Ok(())
+}
+
+/// The topology check for the summary line.
+fn topology_summary(t: &TopologyReport) -> String {
+    let genus = t.genus.map_or("open".to_string(), |g| format!("genus {g}"));
+    let added = if t.added > 0 {
+        format!(
+            " (+{} constraints in thin gaps and parts, {} fits)",
+            t.added, t.rounds
+        )
+    } else {
+        String::new()
+    };
+    if t.agrees() {
+        format!(
+            "{added}; topology kept: {genus}, {} component(s)",
+            t.components
+        )
+    } else {
+        format!(
+            "{added}; TOPOLOGY DIFFERS: {genus}, {} component(s), the mesh has genus {}, {}",
+            t.components, t.goal_genus, t.goal_components
+        )
+    }
 }
 
 /// The report as JSON: the grid, and every iteration's figures.
@@ -235,6 +264,18 @@ fn report_json(report: &IterativeReport) -> String {
         "watertight": report.watertight,
         "best_iteration": report.best,
         "iterations": iterations,
+        "topology": report.topology.map(|t| serde_json::json!({
+            "mesh_genus": t.goal_genus,
+            "mesh_components": t.goal_components,
+            "genus": t.genus,
+            "components": t.components,
+            "agrees": t.agrees(),
+            "cell": t.cell,
+            "probes": t.probes,
+            "added": t.added,
+            "fits": t.rounds,
+            "seconds": t.seconds,
+        })),
     })
     .to_string()
 }

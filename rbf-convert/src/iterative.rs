@@ -8,6 +8,7 @@ use rbf_core::{Constraint, ConstraintKind, FitSettings, Model};
 use rbf_mesh::{TriMesh, Volume, VoxelSettings, WindingTree, voxelize};
 
 use crate::goal::{Goal, summary};
+use crate::topology::{TopologyReport, keep_topology};
 use crate::{ConvertError, IterativeSettings};
 
 /// Constraint counts, boundary errors and timings of one fit-and-refine iteration.
@@ -48,6 +49,9 @@ pub struct IterativeReport {
     pub iterations: Vec<IterationReport>,
     /// The iteration whose model is returned (lowest maximum, then RMS error).
     pub best: usize,
+    /// For a closed mesh with [`IterativeSettings::keep_topology`]: the mesh's and the
+    /// surface's genus and components, and the constraints added to keep them.
+    pub topology: Option<TopologyReport>,
 }
 
 /// Converts a mesh by the iterative method. `progress` hears of every iteration, with the model
@@ -78,7 +82,16 @@ pub fn convert_iterative(
     // gets, so that the mesh itself would score zero; the densities give sub-voxel distances.
     let centres = voxelize(mesh, &voxels(1))?;
     let goal = Goal::new(&density, &centres, Some(WindingTree::new(mesh)))?;
-    refine_to_goal(&goal, settings, watertight, progress)
+    let (mut model, mut report) = refine_to_goal(&goal, settings, watertight, progress)?;
+    if settings.keep_topology && watertight {
+        report.topology = Some(keep_topology(
+            mesh,
+            &mut model,
+            goal.h,
+            settings.max_constraints,
+        )?);
+    }
+    Ok((model, report))
 }
 
 /// Converts a planar region, given by its inside test over the box `[lo, hi]`, to a curve by the
@@ -164,6 +177,7 @@ fn refine_to_goal<const D: usize>(
         watertight,
         iterations: Vec::new(),
         best: 0,
+        topology: None,
     };
     let mut best: Option<(f64, f64, Model<D>)> = None;
     let mut since_best = 0;

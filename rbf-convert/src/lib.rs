@@ -36,6 +36,7 @@ mod nearest;
 mod normals;
 mod poisson;
 mod settings;
+mod topology;
 
 pub use blend::{BlendReport, blend};
 pub use compare::{CompareSettings, DistanceStats, SurfaceDistance, surface_distance};
@@ -45,3 +46,4 @@ pub use normals::{NormalReport, NormalSettings, convert_normals};
 #[doc(hidden)]
 pub use poisson::poisson_subset;
 pub use settings::IterativeSettings;
+pub use topology::TopologyReport;

@@ -18,6 +18,10 @@ fn shipped_meshes_convert_within_two_voxels_with_their_genus() {
             ..Default::default()
         };
         let (model, report) = convert_iterative(&mesh, &s, |_, _| {}).unwrap();
+        let t = report
+            .topology
+            .expect("closed meshes get the topology check");
+        assert!(t.agrees() && t.goal_genus == genus, "{name}: {t:?}");
         let best = report.iterations[report.best - 1];
         assert!(best.max_error <= 2.0, "{name}: {best:?}");
         assert!(best.rms_error <= 0.4, "{name}: {best:?}");

@@ -135,8 +135,16 @@ impl WindingTree {
         id
     }
 
-    /// The winding number at p: exact for near triangles, expansions for far clusters.
-    pub(crate) fn winding_number(&self, p: [f64; 3]) -> f64 {
+    /// The winding number at p: exact for near triangles, expansions for far clusters (1
+    /// inside a closed mesh, 0 outside).
+    ///
+    /// ```
+    /// use rbf_mesh::{TriMesh, WindingTree};
+    /// let tree = WindingTree::new(&TriMesh::icosphere(2));
+    /// assert!((tree.winding_number([0.1, 0.2, 0.0]) - 1.0).abs() < 1e-6);
+    /// assert!(tree.winding_number([3.0, 0.0, 0.0]).abs() < 1e-3);
+    /// ```
+    pub fn winding_number(&self, p: [f64; 3]) -> f64 {
         if self.nodes.is_empty() {
             return 0.0;
         }

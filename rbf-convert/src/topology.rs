@@ -1,0 +1,239 @@
+//! Keeping the mesh's topology (not in Yngve & Turk): their voxel error cannot see a gap or a
+//! part thinner than a voxel, so the fitted surface may bridge two parts of the mesh that
+//! nearly touch (a false handle, or two components merged) or cut through a thin part.
+//!
+//! Probes mark the middle of every thin gap and thin part of the mesh: from each vertex, the
+//! mesh's inside test (winding numbers) is marched along the normal, outward for a gap and
+//! inward for a part; where it changes within `reach` (two voxels), the midpoint is a probe,
+//! with its signed distance to the mesh. A probe on the wrong side of the fitted surface becomes
+//! an exterior (gap) or interior (part) constraint, and the model is fitted again, until no
+//! probe is violated or the rounds run out. The surface is then polygonized finely enough to
+//! resolve the narrowest gap found, and its genus and components are compared with the mesh's.
+
+use rayon::prelude::*;
+use rbf_core::{Constraint, FitSettings, InterpolantView, Model};
+use rbf_mesh::{PolygonizeSettings, Resolution, TriMesh, WindingTree, polygonize_continuation};
+
+use crate::ConvertError;
+
+/// Rounds of adding violated probes and fitting again.
+const MAX_ROUNDS: usize = 8;
+/// Cubes the surface may cross in the polygonization that measures its topology (about a
+/// second's work for a model of a few thousand constraints).
+const MAX_CUBES: f64 = 3e5;
+
+/// The mesh's and the converted surface's topology, and the work of keeping it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TopologyReport {
+    /// Genus of the mesh (Σ over components).
+    pub goal_genus: i64,
+    /// Connected components of the mesh.
+    pub goal_components: usize,
+    /// Genus of the converted surface, polygonized at `cell`; `None` if that mesh was not closed.
+    pub genus: Option<i64>,
+    /// Components of the converted surface.
+    pub components: usize,
+    /// Lattice cube of that polygonization, in the mesh's units.
+    pub cell: f64,
+    /// Probes found in thin gaps and thin parts of the mesh.
+    pub probes: usize,
+    /// Probes added as constraints.
+    pub added: usize,
+    /// Fits made to satisfy them.
+    pub rounds: usize,
+    /// Seconds spent.
+    pub seconds: f64,
+}
+
+impl TopologyReport {
+    /// Whether the converted surface has the mesh's genus and components.
+    pub fn agrees(&self) -> bool {
+        self.genus == Some(self.goal_genus) && self.components == self.goal_components
+    }
+}
+
+/// A point the surface must leave on its side: the middle of a thin gap (outside, value < 0) or
+/// of a thin part (inside, value > 0), with its signed distance to the mesh as the value.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Probe {
+    position: [f64; 3],
+    value: f64,
+}
+
+/// Probes of the gaps and parts of the mesh narrower than `reach`, marched in steps of `step`,
+/// no two within `spacing`.
+pub(crate) fn thin_probes(
+    mesh: &TriMesh,
+    tree: &WindingTree,
+    reach: f64,
+    step: f64,
+    spacing: f64,
+) -> Vec<Probe> {
+    let normals: Vec<[f64; 3]> = mesh
+        .vertex_normals()
+        .into_iter()
+        .map(rbf_core::vec3::normalize)
+        .collect();
+    let found: Vec<Probe> = mesh
+        .positions()
+        .par_iter()
+        .zip(&normals)
+        .flat_map_iter(|(&v, &n)| {
+            [1.0, -1.0]
+                .into_iter()
+                .filter_map(move |sign| probe(tree, v, n, sign, reach, step))
+        })
+        .collect();
+    let mut grid = std::collections::HashSet::new();
+    let key = |p: [f64; 3]| p.map(|c| (c / spacing).floor() as i64);
+    found
+        .into_iter()
+        .filter(|p| grid.insert(key(p.position)))
+        .collect()
+}
+
+/// The probe from vertex v along normal n, outward (`sign` 1) or inward (−1), if the mesh's
+/// inside changes within `reach`.
+fn probe(
+    tree: &WindingTree,
+    v: [f64; 3],
+    n: [f64; 3],
+    sign: f64,
+    reach: f64,
+    step: f64,
+) -> Option<Probe> {
+    let at = |t: f64| -> [f64; 3] { core::array::from_fn(|d| v[d] + sign * t * n[d]) };
+    let inside = |t: f64| tree.winding_number(at(t)) > 0.5;
+    let start_inside = sign < 0.0;
+    if inside(0.25 * step) != start_inside {
+        return None; // a normal that does not leave the surface cleanly (a sharp crease)
+    }
+    let count = (reach / step).ceil() as usize;
+    let k = (1..=count).find(|&k| inside(k as f64 * step) != start_inside)?;
+    let (mut lo, mut hi) = ((k - 1) as f64 * step, k as f64 * step);
+    for _ in 0..8 {
+        let mid = 0.5 * (lo + hi);
+        if inside(mid) == start_inside {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    // The gap (or part) ends at about (lo + hi) / 2: its middle is halfway there.
+    let half = 0.25 * (lo + hi);
+    if inside(half) != start_inside {
+        return None;
+    }
+    let (_, distance) = tree.closest_point(at(half), hi)?;
+    (distance > 0.05 * step).then_some(Probe {
+        position: at(half),
+        value: if start_inside { distance } else { -distance },
+    })
+}
+
+/// Adds violated probes as constraints and fits again until none is violated (or the rounds or
+/// `max_constraints` run out), then measures the surface's topology against the mesh's.
+pub(crate) fn keep_topology(
+    mesh: &TriMesh,
+    model: &mut Model<3>,
+    voxel: f64,
+    max_constraints: usize,
+) -> Result<TopologyReport, ConvertError> {
+    let start = std::time::Instant::now();
+    let goal = mesh.check();
+    let tree = WindingTree::new(mesh);
+    let probes = thin_probes(mesh, &tree, 2.0 * voxel, 0.25 * voxel, 0.5 * voxel);
+    let (mut added, mut rounds) = (0, 0);
+    let fit_settings = FitSettings { ..model.settings };
+    while rounds < MAX_ROUNDS {
+        let violated = violated(&model.interpolant.view(), &probes);
+        if violated.is_empty() {
+            break;
+        }
+        let before = model.constraints.len();
+        let near = 0.1 * voxel;
+        for &i in &violated {
+            if model.constraints.len() >= max_constraints {
+                break;
+            }
+            let p = probes[i];
+            let clear = model.constraints.iter().all(|c| {
+                (0..3)
+                    .map(|d| (c.position[d] - p.position[d]).powi(2))
+                    .sum::<f64>()
+                    > near * near
+            });
+            if clear {
+                model.constraints.push(if p.value > 0.0 {
+                    Constraint::interior(p.position, p.value)
+                } else {
+                    Constraint::exterior(p.position, p.value)
+                });
+            }
+        }
+        if model.constraints.len() == before {
+            break;
+        }
+        added += model.constraints.len() - before;
+        let fit = rbf_solve::fit(&model.constraints, &fit_settings)?;
+        model.interpolant = fit.interpolant;
+        model.report = Some(fit.report);
+        rounds += 1;
+    }
+    // Half a voxel, or finer to put two cubes across the narrowest gap or part found (down to a
+    // quarter voxel), as long as the surface crosses at most MAX_CUBES cubes.
+    let narrowest = probes
+        .iter()
+        .map(|p| 2.0 * p.value.abs())
+        .fold(f64::INFINITY, f64::min);
+    let area: f64 = (0..mesh.triangles().len())
+        .map(|t| 0.5 * rbf_core::vec3::norm(mesh.area_vector(t)))
+        .sum();
+    let affordable = (area / MAX_CUBES).sqrt();
+    let cell = (0.5 * narrowest)
+        .clamp(0.25 * voxel, 0.5 * voxel)
+        .max(affordable.min(0.5 * voxel));
+    let (genus, components) = surface_topology(model, cell);
+    Ok(TopologyReport {
+        goal_genus: goal.genus.unwrap_or(0),
+        goal_components: goal.components,
+        genus,
+        components,
+        cell,
+        probes: probes.len(),
+        added,
+        rounds,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The probes on the wrong side of f's surface.
+fn violated(f: &InterpolantView<'_, f64, 3>, probes: &[Probe]) -> Vec<usize> {
+    let points: Vec<[f64; 3]> = probes.iter().map(|p| p.position).collect();
+    let mut values = vec![0.0; points.len()];
+    // Equal lengths by construction.
+    let _ = f.par_values(&points, &mut values);
+    (0..probes.len())
+        .filter(|&i| {
+            let (v, want) = (values[i], probes[i].value);
+            (want < 0.0 && v >= 0.0) || (want > 0.0 && v <= 0.0)
+        })
+        .collect()
+}
+
+/// Genus and components of the model's surface, polygonized by continuation from its boundary
+/// constraints at `cell`.
+fn surface_topology(model: &Model<3>, cell: f64) -> (Option<i64>, usize) {
+    let settings = PolygonizeSettings {
+        resolution: Resolution::CellSize(cell),
+        ..Default::default()
+    };
+    let seeds = rbf_mesh::surface_seeds(model);
+    match polygonize_continuation(&model.interpolant.view(), &seeds, &settings) {
+        Ok((mesh, _)) => {
+            let r = mesh.check();
+            (r.genus, r.components)
+        }
+        Err(_) => (None, 0),
+    }
+}
