@@ -20,6 +20,11 @@ winding numbers if it is not watertight), then fit, measure the two-way error be
 and the surface's boundary voxels, and add constraints where it is largest, until the error is
 at most a voxel, 4 iterations bring no improvement, --max-iterations pass or --max-constraints
 are placed. The best model seen is written; --report writes every iteration's figures as JSON.
+For a closed mesh its topology is then kept: the voxel error cannot see gaps or parts thinner
+than a voxel, so the middle of every gap and part narrower than two voxels is probed, probes on
+the wrong side of the surface become exterior or interior constraints, and the surface is
+fitted again; the summary line ends with the genus and components of the result against the
+mesh's (--keep-topology false skips this).
 
 --method normals (Turk & O'Brien, §4.3): every vertex becomes a boundary constraint with a normal
 constraint a small distance inside, against the vertex normal; meshes with more vertices than
@@ -56,6 +61,10 @@ pub(crate) struct ConvertArgs {
     /// Write every iteration's figures here as JSON (iterative).
     #[arg(long, value_name = "REPORT.json")]
     report: Option<PathBuf>,
+    /// Keep a closed mesh's genus and components where its parts come closer than a voxel
+    /// (iterative).
+    #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set)]
+    keep_topology: bool,
     /// Regularization λ of the fit.
     #[arg(long, value_name = "L", default_value_t = 0.0)]
     lambda: f64,
@@ -145,6 +154,7 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                     .max_constraints
                     .unwrap_or(IterativeSettings::default().max_constraints),
                 lambda: args.lambda,
+                keep_topology: args.keep_topology,
                 ..Default::default()
             };
             let bar = ProgressBar::new(settings.max_iterations as u64);

@@ -737,12 +737,30 @@ fn iterative_convert_reports_every_iteration() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("max error"), "{}", stderr(&o));
+    // The knot is closed, of genus 1: the summary and the report say it was kept.
+    assert!(
+        stderr(&o).contains("topology kept: genus 1, 1 component(s)"),
+        "{}",
+        stderr(&o)
+    );
     let text = std::fs::read_to_string(&report).unwrap();
     assert!(
         text.contains("\"iterations\"")
             && text.contains("\"max_error_voxels\"")
             && text.contains("\"fit_seconds\""),
         "{text}"
+    );
+    let parsed: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let t = &parsed["topology"];
+    assert_eq!(
+        (
+            &t["mesh_genus"],
+            &t["genus"],
+            &t["components"],
+            &t["agrees"]
+        ),
+        (&1.into(), &1.into(), &1.into(), &true.into()),
+        "{t}"
     );
     let out = dir.path().join("knot.obj");
     let o = rbf(
