@@ -228,10 +228,7 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
 fn topology_summary(t: &TopologyReport) -> String {
     let genus = t.genus.map_or("open".to_string(), |g| format!("genus {g}"));
     let added = if t.added > 0 {
-        format!(
-            " (+{} constraints in thin gaps and parts, {} fits)",
-            t.added, t.rounds
-        )
+        format!(" (of which {} in thin gaps and parts)", t.added)
     } else {
         String::new()
     };
@@ -259,6 +256,7 @@ fn report_json(report: &IterativeReport) -> String {
                 "boundary": it.boundary,
                 "interior": it.interior,
                 "exterior": it.exterior,
+                "violated_probes": it.violated_probes,
                 "max_error_voxels": it.max_error,
                 "rms_error_voxels": it.rms_error,
                 "fit_seconds": it.fit_seconds,
@@ -283,7 +281,6 @@ fn report_json(report: &IterativeReport) -> String {
             "cell": t.cell,
             "probes": t.probes,
             "added": t.added,
-            "fits": t.rounds,
             "seconds": t.seconds,
         })),
     })

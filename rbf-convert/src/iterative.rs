@@ -4,11 +4,11 @@
 
 use std::time::Instant;
 
-use rbf_core::{Constraint, ConstraintKind, FitSettings, Model};
+use rbf_core::{Constraint, ConstraintKind, FitSettings, Interpolant, Model};
 use rbf_mesh::{TriMesh, Volume, VoxelSettings, WindingTree, voxelize};
 
 use crate::goal::{Goal, summary};
-use crate::topology::{TopologyReport, keep_topology};
+use crate::topology::{TopologyReport, fixes, measure, thin_probes};
 use crate::{ConvertError, IterativeSettings};
 
 /// Constraint counts, boundary errors and timings of one fit-and-refine iteration.
@@ -22,6 +22,9 @@ pub struct IterationReport {
     pub interior: usize,
     /// Exterior constraints fitted this iteration.
     pub exterior: usize,
+    /// Probes of thin gaps and parts that this iteration's surface violated, added as
+    /// constraints for the next (see [`IterativeSettings::keep_topology`]).
+    pub violated_probes: usize,
     /// Two-way Hausdorff error between the boundary voxels, in voxels (equation 6).
     pub max_error: f64,
     /// Root-mean-square of the same errors, in voxels.
@@ -81,15 +84,32 @@ pub fn convert_iterative(
     // The goal's inside is the class of each voxel's centre, the same test the current surface
     // gets, so that the mesh itself would score zero; the densities give sub-voxel distances.
     let centres = voxelize(mesh, &voxels(1))?;
-    let goal = Goal::new(&density, &centres, Some(WindingTree::new(mesh)))?;
-    let (mut model, mut report) = refine_to_goal(&goal, settings, watertight, progress)?;
-    if settings.keep_topology && watertight {
-        report.topology = Some(keep_topology(
+    let tree = WindingTree::new(mesh);
+    let start = Instant::now();
+    let keep = settings.keep_topology && watertight;
+    let probes = if keep {
+        thin_probes(
             mesh,
-            &mut model,
-            goal.h,
-            settings.max_constraints,
-        )?);
+            &tree,
+            2.0 * density.voxel_size,
+            0.25 * density.voxel_size,
+            0.5 * density.voxel_size,
+        )
+    } else {
+        Vec::new()
+    };
+    let probe_seconds = start.elapsed().as_secs_f64();
+    let goal = Goal::new(&density, &centres, Some(tree))?;
+    let check = |f: &Interpolant<f64, 3>, constraints: &[Constraint<3>]| {
+        fixes(&f.view(), &probes, constraints, goal.h)
+    };
+    let (model, mut report) = refine_to_goal(&goal, settings, watertight, check, progress)?;
+    if keep {
+        let added = report.iterations[..report.best.saturating_sub(1)]
+            .iter()
+            .map(|it| it.violated_probes)
+            .sum();
+        report.topology = Some(measure(mesh, &model, &probes, goal.h, added, probe_seconds));
     }
     Ok((model, report))
 }
@@ -155,7 +175,7 @@ pub fn convert_iterative_2d(
         }
     }
     let goal = Goal::new(&density, &centres, None)?;
-    refine_to_goal(&goal, settings, true, progress)
+    refine_to_goal(&goal, settings, true, |_, _| Vec::new(), progress)
 }
 
 /// The loop of Yngve & Turk (2002, §5): fit, evaluate, measure, add constraints, until the
@@ -164,6 +184,7 @@ fn refine_to_goal<const D: usize>(
     goal: &Goal,
     settings: &IterativeSettings,
     watertight: bool,
+    check: impl Fn(&Interpolant<f64, D>, &[Constraint<D>]) -> Vec<Constraint<D>>,
     mut progress: impl FnMut(&IterationReport, &Model<D>),
 ) -> Result<(Model<D>, IterativeReport), ConvertError> {
     let fit_settings = FitSettings {
@@ -179,7 +200,8 @@ fn refine_to_goal<const D: usize>(
         best: 0,
         topology: None,
     };
-    let mut best: Option<(f64, f64, Model<D>)> = None;
+    // Models that leave no probe violated first, then by maximum and RMS error.
+    let mut best: Option<(bool, f64, f64, Model<D>)> = None;
     let mut since_best = 0;
     for iteration in 1..=settings.max_iterations {
         let t = Instant::now();
@@ -192,6 +214,7 @@ fn refine_to_goal<const D: usize>(
         let errors = goal.errors(&inside);
         let (max_error, rms_error) = summary(&errors);
         let distance_seconds = t.elapsed().as_secs_f64();
+        let fixes = check(&fit.interpolant, &constraints);
         let model = Model {
             constraints: constraints.clone(),
             settings: fit_settings,
@@ -205,29 +228,34 @@ fn refine_to_goal<const D: usize>(
             count(ConstraintKind::Exterior),
         );
         let t = Instant::now();
+        let violated = !fixes.is_empty();
         let better = best
             .as_ref()
-            .is_none_or(|(m, r, _)| (max_error, rms_error) < (*m, *r));
+            .is_none_or(|(v, m, r, _)| (violated, max_error, rms_error) < (*v, *m, *r));
         if better {
             report.best = iteration;
             since_best = 0;
         } else {
             since_best += 1;
         }
-        let done = max_error <= settings.target_error
+        let done = (max_error <= settings.target_error && !violated)
             || since_best >= settings.patience
             || iteration == settings.max_iterations
             || constraints.len() >= settings.max_constraints;
+        let violated_probes = fixes.len();
         let added = if done {
             0
         } else {
-            goal.refine(&errors, &mut constraints, settings)
+            let room = settings.max_constraints.saturating_sub(constraints.len());
+            constraints.extend(fixes.into_iter().take(room));
+            violated_probes.min(room) + goal.refine(&errors, &mut constraints, settings)
         };
         let it = IterationReport {
             iteration,
             boundary,
             interior,
             exterior,
+            violated_probes,
             max_error,
             rms_error,
             fit_seconds,
@@ -237,13 +265,13 @@ fn refine_to_goal<const D: usize>(
         };
         progress(&it, &model);
         if better {
-            best = Some((max_error, rms_error, model));
+            best = Some((violated, max_error, rms_error, model));
         }
         report.iterations.push(it);
         if done || added == 0 {
             break;
         }
     }
-    let (_, _, model) = best.ok_or(ConvertError::NoIteration)?;
+    let (_, _, _, model) = best.ok_or(ConvertError::NoIteration)?;
     Ok((model, report))
 }

@@ -5,19 +5,16 @@
 //! Probes mark the middle of every thin gap and thin part of the mesh: from each vertex, the
 //! mesh's inside test (winding numbers) is marched along the normal, outward for a gap and
 //! inward for a part; where it changes within `reach` (two voxels), the midpoint is a probe,
-//! with its signed distance to the mesh. A probe on the wrong side of the fitted surface becomes
-//! an exterior (gap) or interior (part) constraint, and the model is fitted again, until no
-//! probe is violated or the rounds run out. The surface is then polygonized finely enough to
-//! resolve the narrowest gap found, and its genus and components are compared with the mesh's.
+//! with its signed distance to the mesh. In every iteration of the loop, a probe on the wrong
+//! side of the fitted surface becomes an exterior (gap) or interior (part) constraint beside the
+//! loop's own, and a model that violates none is preferred. The returned surface is then
+//! polygonized finely enough to resolve the narrowest gap found, and its genus and components
+//! are compared with the mesh's.
 
 use rayon::prelude::*;
-use rbf_core::{Constraint, FitSettings, InterpolantView, Model};
+use rbf_core::{Constraint, InterpolantView, Model};
 use rbf_mesh::{PolygonizeSettings, Resolution, TriMesh, WindingTree, polygonize_continuation};
 
-use crate::ConvertError;
-
-/// Rounds of adding violated probes and fitting again.
-const MAX_ROUNDS: usize = 8;
 /// Cubes the surface may cross in the polygonization that measures its topology (about a
 /// second's work for a model of a few thousand constraints).
 const MAX_CUBES: f64 = 3e5;
@@ -37,11 +34,9 @@ pub struct TopologyReport {
     pub cell: f64,
     /// Probes found in thin gaps and thin parts of the mesh.
     pub probes: usize,
-    /// Probes added as constraints.
+    /// Probes among the returned model's constraints.
     pub added: usize,
-    /// Fits made to satisfy them.
-    pub rounds: usize,
-    /// Seconds spent.
+    /// Seconds spent finding probes and measuring the topology.
     pub seconds: f64,
 }
 
@@ -131,55 +126,51 @@ fn probe(
     })
 }
 
-/// Adds violated probes as constraints and fits again until none is violated (or the rounds or
-/// `max_constraints` run out), then measures the surface's topology against the mesh's.
-pub(crate) fn keep_topology(
-    mesh: &TriMesh,
-    model: &mut Model<3>,
+/// The violated probes (on the wrong side of f's surface) as constraints, leaving out those
+/// within a tenth of a voxel of a constraint already there.
+pub(crate) fn fixes(
+    f: &InterpolantView<'_, f64, 3>,
+    probes: &[Probe],
+    constraints: &[Constraint<3>],
     voxel: f64,
-    max_constraints: usize,
-) -> Result<TopologyReport, ConvertError> {
+) -> Vec<Constraint<3>> {
+    let points: Vec<[f64; 3]> = probes.iter().map(|p| p.position).collect();
+    let mut values = vec![0.0; points.len()];
+    // Equal lengths by construction.
+    let _ = f.par_values(&points, &mut values);
+    let near = 0.1 * voxel;
+    let mut taken = std::collections::HashSet::new();
+    let key = |p: [f64; 3]| p.map(|c| (c / near).floor() as i64);
+    for c in constraints {
+        taken.insert(key(c.position));
+    }
+    probes
+        .iter()
+        .zip(values)
+        .filter(|(p, v)| (p.value < 0.0 && *v >= 0.0) || (p.value > 0.0 && *v <= 0.0))
+        .filter(|(p, _)| taken.insert(key(p.position)))
+        .map(|(p, _)| {
+            if p.value > 0.0 {
+                Constraint::interior(p.position, p.value)
+            } else {
+                Constraint::exterior(p.position, p.value)
+            }
+        })
+        .collect()
+}
+
+/// The mesh's and the model's topology: the model polygonized finely enough to resolve the
+/// narrowest gap or part among `probes`.
+pub(crate) fn measure(
+    mesh: &TriMesh,
+    model: &Model<3>,
+    probes: &[Probe],
+    voxel: f64,
+    added: usize,
+    seconds: f64,
+) -> TopologyReport {
     let start = std::time::Instant::now();
     let goal = mesh.check();
-    let tree = WindingTree::new(mesh);
-    let probes = thin_probes(mesh, &tree, 2.0 * voxel, 0.25 * voxel, 0.5 * voxel);
-    let (mut added, mut rounds) = (0, 0);
-    let fit_settings = FitSettings { ..model.settings };
-    while rounds < MAX_ROUNDS {
-        let violated = violated(&model.interpolant.view(), &probes);
-        if violated.is_empty() {
-            break;
-        }
-        let before = model.constraints.len();
-        let near = 0.1 * voxel;
-        for &i in &violated {
-            if model.constraints.len() >= max_constraints {
-                break;
-            }
-            let p = probes[i];
-            let clear = model.constraints.iter().all(|c| {
-                (0..3)
-                    .map(|d| (c.position[d] - p.position[d]).powi(2))
-                    .sum::<f64>()
-                    > near * near
-            });
-            if clear {
-                model.constraints.push(if p.value > 0.0 {
-                    Constraint::interior(p.position, p.value)
-                } else {
-                    Constraint::exterior(p.position, p.value)
-                });
-            }
-        }
-        if model.constraints.len() == before {
-            break;
-        }
-        added += model.constraints.len() - before;
-        let fit = rbf_solve::fit(&model.constraints, &fit_settings)?;
-        model.interpolant = fit.interpolant;
-        model.report = Some(fit.report);
-        rounds += 1;
-    }
     // Half a voxel, or finer to put two cubes across the narrowest gap or part found (down to a
     // quarter voxel), as long as the surface crosses at most MAX_CUBES cubes.
     let narrowest = probes
@@ -194,7 +185,7 @@ pub(crate) fn keep_topology(
         .clamp(0.25 * voxel, 0.5 * voxel)
         .max(affordable.min(0.5 * voxel));
     let (genus, components) = surface_topology(model, cell);
-    Ok(TopologyReport {
+    TopologyReport {
         goal_genus: goal.genus.unwrap_or(0),
         goal_components: goal.components,
         genus,
@@ -202,23 +193,8 @@ pub(crate) fn keep_topology(
         cell,
         probes: probes.len(),
         added,
-        rounds,
-        seconds: start.elapsed().as_secs_f64(),
-    })
-}
-
-/// The probes on the wrong side of f's surface.
-fn violated(f: &InterpolantView<'_, f64, 3>, probes: &[Probe]) -> Vec<usize> {
-    let points: Vec<[f64; 3]> = probes.iter().map(|p| p.position).collect();
-    let mut values = vec![0.0; points.len()];
-    // Equal lengths by construction.
-    let _ = f.par_values(&points, &mut values);
-    (0..probes.len())
-        .filter(|&i| {
-            let (v, want) = (values[i], probes[i].value);
-            (want < 0.0 && v >= 0.0) || (want > 0.0 && v <= 0.0)
-        })
-        .collect()
+        seconds: seconds + start.elapsed().as_secs_f64(),
+    }
 }
 
 /// Genus and components of the model's surface, polygonized by continuation from its boundary
