@@ -141,8 +141,8 @@ impl WindingTree {
     /// ```
     /// use rbf_mesh::{TriMesh, WindingTree};
     /// let tree = WindingTree::new(&TriMesh::icosphere(2));
-    /// assert!((tree.winding_number([0.1, 0.2, 0.0]) - 1.0).abs() < 1e-6);
-    /// assert!(tree.winding_number([3.0, 0.0, 0.0]).abs() < 1e-3);
+    /// assert!((tree.winding_number([0.1, 0.2, 0.0]) - 1.0).abs() < 0.05);
+    /// assert!(tree.winding_number([3.0, 0.0, 0.0]).abs() < 0.05);
     /// ```
     pub fn winding_number(&self, p: [f64; 3]) -> f64 {
         if self.nodes.is_empty() {
