@@ -227,10 +227,12 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
 /// The topology check for the summary line.
 fn topology_summary(t: &TopologyReport) -> String {
     let genus = t.genus.map_or("open".to_string(), |g| format!("genus {g}"));
-    let added = if t.added > 0 {
-        format!(" (of which {} in thin gaps and parts)", t.added)
-    } else {
-        String::new()
+    let added = match (t.added, t.polished) {
+        (0, 0) => String::new(),
+        (a, 0) => format!(" (of which {a} in thin gaps and parts)"),
+        (a, p) => {
+            format!(" (+{p} where the surface strayed from the mesh; {a} in thin gaps and parts)")
+        }
     };
     if t.agrees() {
         format!(
@@ -281,6 +283,7 @@ fn report_json(report: &IterativeReport) -> String {
             "cell": t.cell,
             "probes": t.probes,
             "added": t.added,
+            "polished": t.polished,
             "seconds": t.seconds,
         })),
     })

@@ -8,7 +8,11 @@ use rbf_core::{Constraint, ConstraintKind, FitSettings, Interpolant, Model};
 use rbf_mesh::{TriMesh, Volume, VoxelSettings, WindingTree, voxelize};
 
 use crate::goal::{Goal, summary};
+use crate::polish::corrections;
 use crate::topology::{TopologyReport, fixes, measure, thin_probes};
+
+/// Rounds of pulling the surface back to the mesh after the loop.
+const POLISH_ROUNDS: usize = 2;
 use crate::{ConvertError, IterativeSettings};
 
 /// Constraint counts, boundary errors and timings of one fit-and-refine iteration.
@@ -103,13 +107,51 @@ pub fn convert_iterative(
     let check = |f: &Interpolant<f64, 3>, constraints: &[Constraint<3>]| {
         fixes(&f.view(), &probes, constraints, goal.h)
     };
-    let (model, mut report) = refine_to_goal(&goal, settings, watertight, check, progress)?;
+    let (mut model, mut report) = refine_to_goal(&goal, settings, watertight, check, progress)?;
     if keep {
         let added = report.iterations[..report.best.saturating_sub(1)]
             .iter()
             .map(|it| it.violated_probes)
             .sum();
-        report.topology = Some(measure(mesh, &model, &probes, goal.h, added, probe_seconds));
+        let (mut topology, mut surface) =
+            measure(mesh, &model, &probes, goal.h, added, probe_seconds);
+        // Polish: pull back where the surface strays from the mesh itself, while that keeps
+        // every probe satisfied.
+        let tree = WindingTree::new(mesh);
+        for _ in 0..POLISH_ROUNDS {
+            let Some(s) = &surface else { break };
+            let room = settings
+                .max_constraints
+                .saturating_sub(model.constraints.len());
+            let extra = corrections(mesh, &tree, s, &model.constraints, goal.h);
+            if extra.is_empty() || room == 0 {
+                break;
+            }
+            let mut constraints = model.constraints.clone();
+            constraints.extend(extra.into_iter().take(room));
+            let fit = rbf_solve::fit(&constraints, &model.settings)?;
+            if !fixes(&fit.interpolant.view(), &probes, &constraints, goal.h).is_empty() {
+                break;
+            }
+            let polished = Model {
+                constraints,
+                interpolant: fit.interpolant,
+                report: Some(fit.report),
+                ..model.clone()
+            };
+            let (t, s) = measure(mesh, &polished, &probes, goal.h, added, 0.0);
+            if topology.agrees() && !t.agrees() {
+                break;
+            }
+            topology = TopologyReport {
+                seconds: topology.seconds + t.seconds,
+                polished: topology.polished + polished.constraints.len() - model.constraints.len(),
+                ..t
+            };
+            model = polished;
+            surface = s;
+        }
+        report.topology = Some(topology);
     }
     Ok((model, report))
 }

@@ -35,6 +35,7 @@ mod iterative;
 mod nearest;
 mod normals;
 mod poisson;
+mod polish;
 mod settings;
 mod topology;
 

@@ -36,6 +36,9 @@ pub struct TopologyReport {
     pub probes: usize,
     /// Probes among the returned model's constraints.
     pub added: usize,
+    /// Constraints added after the loop where the surface strayed more than a voxel from the
+    /// mesh, or the mesh from the surface.
+    pub polished: usize,
     /// Seconds spent finding probes and measuring the topology.
     pub seconds: f64,
 }
@@ -160,7 +163,7 @@ pub(crate) fn fixes(
 }
 
 /// The mesh's and the model's topology: the model polygonized finely enough to resolve the
-/// narrowest gap or part among `probes`.
+/// narrowest gap or part among `probes`; and that polygonization.
 pub(crate) fn measure(
     mesh: &TriMesh,
     model: &Model<3>,
@@ -168,7 +171,7 @@ pub(crate) fn measure(
     voxel: f64,
     added: usize,
     seconds: f64,
-) -> TopologyReport {
+) -> (TopologyReport, Option<TriMesh>) {
     let start = std::time::Instant::now();
     let goal = mesh.check();
     // Half a voxel, or finer to put two cubes across the narrowest gap or part found (down to a
@@ -184,8 +187,8 @@ pub(crate) fn measure(
     let cell = (0.5 * narrowest)
         .clamp(0.25 * voxel, 0.5 * voxel)
         .max(affordable.min(0.5 * voxel));
-    let (genus, components) = surface_topology(model, cell);
-    TopologyReport {
+    let (genus, components, surface) = surface_topology(model, cell);
+    let report = TopologyReport {
         goal_genus: goal.genus.unwrap_or(0),
         goal_components: goal.components,
         genus,
@@ -193,13 +196,15 @@ pub(crate) fn measure(
         cell,
         probes: probes.len(),
         added,
+        polished: 0,
         seconds: seconds + start.elapsed().as_secs_f64(),
-    }
+    };
+    (report, surface)
 }
 
 /// Genus and components of the model's surface, polygonized by continuation from its boundary
 /// constraints at `cell`.
-fn surface_topology(model: &Model<3>, cell: f64) -> (Option<i64>, usize) {
+fn surface_topology(model: &Model<3>, cell: f64) -> (Option<i64>, usize, Option<TriMesh>) {
     let settings = PolygonizeSettings {
         resolution: Resolution::CellSize(cell),
         ..Default::default()
@@ -208,8 +213,8 @@ fn surface_topology(model: &Model<3>, cell: f64) -> (Option<i64>, usize) {
     match polygonize_continuation(&model.interpolant.view(), &seeds, &settings) {
         Ok((mesh, _)) => {
             let r = mesh.check();
-            (r.genus, r.components)
+            (r.genus, r.components, Some(mesh))
         }
-        Err(_) => (None, 0),
+        Err(_) => (None, 0, None),
     }
 }
