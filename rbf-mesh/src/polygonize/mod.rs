@@ -5,7 +5,9 @@
 //! together across cubes and have no ambiguous cases: the output is watertight and manifold
 //! wherever the surface is closed inside the box, with triangles facing outward (toward
 //! f < 0). Vertices are placed on the surface by root finding along lattice edges, normals are
-//! the normalized −∇f.
+//! the normalized −∇f. Short edges are then collapsed and caps flipped (never moving a vertex,
+//! always keeping the topology): about 0.8 times the triangles of marching cubes on the same
+//! lattice, no angle under 5°, no two vertices nearly coincident.
 
 mod continuation;
 mod grid;
