@@ -130,7 +130,7 @@ pub fn convert_iterative(
             let mut constraints = model.constraints.clone();
             constraints.extend(extra.into_iter().take(room));
             let fit = rbf_solve::fit(&constraints, &model.settings)?;
-            if !fixes(&fit.interpolant.view(), &probes, &constraints, goal.h).is_empty() {
+            if fixes(&fit.interpolant.view(), &probes, &constraints, goal.h).0 > 0 {
                 break;
             }
             let polished = Model {
@@ -217,7 +217,7 @@ pub fn convert_iterative_2d(
         }
     }
     let goal = Goal::new(&density, &centres, None)?;
-    refine_to_goal(&goal, settings, true, |_, _| Vec::new(), progress)
+    refine_to_goal(&goal, settings, true, |_, _| (0, Vec::new()), progress)
 }
 
 /// The loop of Yngve & Turk (2002, §5): fit, evaluate, measure, add constraints, until the
@@ -226,7 +226,7 @@ fn refine_to_goal<const D: usize>(
     goal: &Goal,
     settings: &IterativeSettings,
     watertight: bool,
-    check: impl Fn(&Interpolant<f64, D>, &[Constraint<D>]) -> Vec<Constraint<D>>,
+    check: impl Fn(&Interpolant<f64, D>, &[Constraint<D>]) -> (usize, Vec<Constraint<D>>),
     mut progress: impl FnMut(&IterationReport, &Model<D>),
 ) -> Result<(Model<D>, IterativeReport), ConvertError> {
     let fit_settings = FitSettings {
@@ -256,7 +256,7 @@ fn refine_to_goal<const D: usize>(
         let errors = goal.errors(&inside);
         let (max_error, rms_error) = summary(&errors);
         let distance_seconds = t.elapsed().as_secs_f64();
-        let fixes = check(&fit.interpolant, &constraints);
+        let (violations, fixes) = check(&fit.interpolant, &constraints);
         let model = Model {
             constraints: constraints.clone(),
             settings: fit_settings,
@@ -270,7 +270,7 @@ fn refine_to_goal<const D: usize>(
             count(ConstraintKind::Exterior),
         );
         let t = Instant::now();
-        let violated = !fixes.is_empty();
+        let violated = violations > 0;
         let better = best
             .as_ref()
             .is_none_or(|(v, m, r, _)| (violated, max_error, rms_error) < (*v, *m, *r));
@@ -284,13 +284,19 @@ fn refine_to_goal<const D: usize>(
             || since_best >= settings.patience
             || iteration == settings.max_iterations
             || constraints.len() >= settings.max_constraints;
-        let violated_probes = fixes.len();
+        let room = settings.max_constraints.saturating_sub(constraints.len());
+        let violated_probes = if done { 0 } else { fixes.len().min(room) };
         let added = if done {
             0
         } else {
-            let room = settings.max_constraints.saturating_sub(constraints.len());
             constraints.extend(fixes.into_iter().take(room));
-            violated_probes.min(room) + goal.refine(&errors, &mut constraints, settings)
+            // Once the error is within its target, only the probes are added.
+            let refined = if max_error <= settings.target_error {
+                0
+            } else {
+                goal.refine(&errors, &mut constraints, settings)
+            };
+            violated_probes + refined
         };
         let it = IterationReport {
             iteration,

@@ -129,14 +129,14 @@ fn probe(
     })
 }
 
-/// The violated probes (on the wrong side of f's surface) as constraints, leaving out those
-/// within a tenth of a voxel of a constraint already there.
+/// How many probes are violated (on the wrong side of f's surface), and those of them not
+/// within a tenth of a voxel of a constraint already there, as constraints.
 pub(crate) fn fixes(
     f: &InterpolantView<'_, f64, 3>,
     probes: &[Probe],
     constraints: &[Constraint<3>],
     voxel: f64,
-) -> Vec<Constraint<3>> {
+) -> (usize, Vec<Constraint<3>>) {
     let points: Vec<[f64; 3]> = probes.iter().map(|p| p.position).collect();
     let mut values = vec![0.0; points.len()];
     // Equal lengths by construction.
@@ -147,19 +147,24 @@ pub(crate) fn fixes(
     for c in constraints {
         taken.insert(key(c.position));
     }
-    probes
+    let violated: Vec<&Probe> = probes
         .iter()
         .zip(values)
         .filter(|(p, v)| (p.value < 0.0 && *v >= 0.0) || (p.value > 0.0 && *v <= 0.0))
-        .filter(|(p, _)| taken.insert(key(p.position)))
-        .map(|(p, _)| {
+        .map(|(p, _)| p)
+        .collect();
+    let new = violated
+        .iter()
+        .filter(|p| taken.insert(key(p.position)))
+        .map(|p| {
             if p.value > 0.0 {
                 Constraint::interior(p.position, p.value)
             } else {
                 Constraint::exterior(p.position, p.value)
             }
         })
-        .collect()
+        .collect();
+    (violated.len(), new)
 }
 
 /// The mesh's and the model's topology: the model polygonized finely enough to resolve the
@@ -187,7 +192,7 @@ pub(crate) fn measure(
     let cell = (0.5 * narrowest)
         .clamp(0.25 * voxel, 0.5 * voxel)
         .max(affordable.min(0.5 * voxel));
-    let (genus, components, surface) = surface_topology(model, cell);
+    let (genus, components, surface) = surface_topology(model, cell, voxel);
     let report = TopologyReport {
         goal_genus: goal.genus.unwrap_or(0),
         goal_components: goal.components,
@@ -204,13 +209,28 @@ pub(crate) fn measure(
 
 /// Genus and components of the model's surface, polygonized by continuation from its boundary
 /// constraints at `cell`.
-fn surface_topology(model: &Model<3>, cell: f64) -> (Option<i64>, usize, Option<TriMesh>) {
+fn surface_topology(
+    model: &Model<3>,
+    cell: f64,
+    voxel: f64,
+) -> (Option<i64>, usize, Option<TriMesh>) {
     let settings = PolygonizeSettings {
         resolution: Resolution::CellSize(cell),
         ..Default::default()
     };
-    let seeds = rbf_mesh::surface_seeds(model);
-    match polygonize_continuation(&model.interpolant.view(), &seeds, &settings) {
+    let f = model.interpolant.view();
+    // Seeds on every component: the constraints on the surface, and the vertices of a
+    // voxel-sized grid polygonization of the whole box (which finds pieces that touch no
+    // constraint, such as a stray blob).
+    let mut seeds = rbf_mesh::surface_seeds(model);
+    let coarse = PolygonizeSettings {
+        resolution: Resolution::CellSize(voxel),
+        ..Default::default()
+    };
+    if let Ok((mesh, _)) = rbf_mesh::polygonize_grid(&f, &coarse) {
+        seeds.extend(mesh.positions().iter().step_by(8));
+    }
+    match polygonize_continuation(&f, &seeds, &settings) {
         Ok((mesh, _)) => {
             let r = mesh.check();
             (r.genus, r.components, Some(mesh))

@@ -3,7 +3,8 @@
 //! trilinear interpolant, which costs no evaluation of the models; every candidate is then
 //! confirmed by exact Newton steps. Each fine cell carries an estimate of how far the
 //! interpolant can be from F (from second differences of the samples), and a ray that comes
-//! that close to zero without crossing is checked exactly too.
+//! that close to zero without crossing is checked exactly too, at its closest sample (a thin
+//! feature whose peak lies between the samples along the ray can still be missed).
 
 use rayon::prelude::*;
 use rbf_core::InterpolantView;

@@ -73,7 +73,8 @@ pub struct RenderSettings {
     /// default.
     pub lipschitz: Lipschitz,
     /// Cells along the longest side of each solid's box; 0 (the default) picks 32, or for
-    /// [`Lipschitz::Auto`] one per 16 pixels of the image's longer side, 8 to 64.
+    /// [`Lipschitz::Auto`] one per 16 pixels of the image's longer side, 8 to 64 (at most 64
+    /// with Auto, 256 otherwise).
     pub cells: usize,
 }
 
@@ -100,6 +101,8 @@ impl RenderSettings {
                 (side as usize / 16).clamp(8, 64)
             }
             (0, _) => 32,
+            // The sampled band holds (4 × cells)³ samples at most: 64 keeps it within memory.
+            (cells, _) if self.lipschitz == Lipschitz::Auto => cells.min(64),
             (cells, _) => cells.min(256),
         }
     }

@@ -204,10 +204,14 @@ pub(crate) fn assemble(
     for (i, &v) in kept.iter().enumerate() {
         new_index[v] = i as u32;
     }
-    let triangles: Vec<[u32; 3]> = triangles
+    let mut triangles: Vec<[u32; 3]> = triangles
         .into_iter()
         .map(|t| t.map(|v| new_index[merged[v as usize] as usize]))
         .collect();
-    TriMesh::new(kept.iter().map(|&v| positions[v]).collect(), triangles)?
-        .with_normals(kept.iter().map(|&v| normals[v]).collect())
+    let positions: Vec<[f64; 3]> = kept.iter().map(|&v| positions[v]).collect();
+    let normals: Vec<[f64; 3]> = kept.iter().map(|&v| normals[v]).collect();
+    // Root finding moved vertices after the first collapses: flip back any triangle that
+    // turned over.
+    simplify::unfold(&positions, &normals, &mut triangles);
+    TriMesh::new(positions, triangles)?.with_normals(normals)
 }

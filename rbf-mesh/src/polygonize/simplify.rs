@@ -5,10 +5,13 @@
 //!
 //! Edges are collapsed shortest first, one end merged into the other (no vertex moves, so every
 //! vertex stays on the surface where root finding puts it). A collapse is made only when the
-//! link condition holds (the two ends share exactly the two neighbours across the edge), which
-//! keeps a closed manifold closed and its topology unchanged; when no remaining triangle turns
-//! by more than 60° or is left with an angle below [`MIN_ANGLE`] that it did not already have;
-//! and never at the mesh's border (where the box cuts an open surface). It stops when the
+//! link condition holds (the two ends share exactly the two neighbours across the edge) and no
+//! triangle would fold onto another, which keeps a closed manifold closed and its topology
+//! unchanged;
+//! when no remaining triangle turns by more than 60° or (for edges longer than [`SHORT`] of a
+//! cell, whose collapse moves a corner noticeably) is left with an angle below [`MIN_ANGLE`]
+//! that it did not already have; and never at the mesh's border (where the box cuts an open
+//! surface). It stops when the
 //! vertices are down to the target (about marching cubes' count) and every edge shorter than a
 //! fraction of the cell is gone, or no allowed collapse remains.
 
@@ -215,6 +218,18 @@ fn collapsible(
         }
         let old = triangles[t as usize];
         let new = old.map(|v| if v == from { to } else { v });
+        // A fold (two triangles back to back, as when a tetrahedron-like piece collapses),
+        // which the link condition alone lets through.
+        let mut sorted = new;
+        sorted.sort_unstable();
+        let folds = around[to as usize].iter().filter(live).any(|&u| {
+            let mut other = triangles[u as usize];
+            other.sort_unstable();
+            other == sorted
+        });
+        if folds {
+            return None;
+        }
         let (mut n_old, n_new) = (normal_of(old), normal_of(new));
         if norm(n_old) < tiny {
             n_old = around_normal;
@@ -321,4 +336,68 @@ pub(crate) fn largest_cosine(t: [Vec3; 3]) -> f64 {
             if c.is_finite() { c } else { 1.0 }
         })
         .fold(-1.0, f64::max)
+}
+
+/// Flips an edge of each triangle that faces against its vertices' normals (root finding moved
+/// its vertices after a collapse decided on their estimates) when the flip leaves both
+/// triangles facing with their normals and makes no edge twice. Returns how many remain.
+pub(crate) fn unfold(positions: &[Vec3], normals: &[Vec3], triangles: &mut [[u32; 3]]) -> usize {
+    let p = |v: u32| positions[v as usize];
+    let facing = |t: [u32; 3]| {
+        let n = cross(sub(p(t[1]), p(t[0])), sub(p(t[2]), p(t[0])));
+        t.iter().map(|&v| dot(n, normals[v as usize])).sum::<f64>() > 0.0
+    };
+    let folded: Vec<usize> = (0..triangles.len())
+        .filter(|&t| !facing(triangles[t]))
+        .collect();
+    if folded.is_empty() {
+        return 0;
+    }
+    let mut edges: std::collections::HashMap<(u32, u32), usize> = std::collections::HashMap::new();
+    for (i, t) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            edges.insert((t[k], t[(k + 1) % 3]), i);
+        }
+    }
+    let mut left = 0;
+    for t1 in folded {
+        let tri = triangles[t1];
+        if facing(tri) {
+            continue;
+        }
+        let mut fixed = false;
+        for k in 0..3 {
+            let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+            let Some(&t2) = edges.get(&(b, a)) else {
+                continue;
+            };
+            let Some(d) = triangles[t2].into_iter().find(|&w| w != a && w != b) else {
+                continue;
+            };
+            if c == d || edges.contains_key(&(c, d)) || edges.contains_key(&(d, c)) {
+                continue;
+            }
+            let (new1, new2) = ([c, a, d], [d, b, c]);
+            if !(facing(new1) && facing(new2)) {
+                continue;
+            }
+            let old2 = triangles[t2];
+            for old in [tri, old2] {
+                for k in 0..3 {
+                    edges.remove(&(old[k], old[(k + 1) % 3]));
+                }
+            }
+            triangles[t1] = new1;
+            triangles[t2] = new2;
+            for (t, new) in [(t1, new1), (t2, new2)] {
+                for k in 0..3 {
+                    edges.insert((new[k], new[(k + 1) % 3]), t);
+                }
+            }
+            fixed = true;
+            break;
+        }
+        left += usize::from(!fixed);
+    }
+    left
 }

@@ -64,8 +64,28 @@ fn assert_good(name: &str, f: &Interpolant<f64, 3>, mesh: &TriMesh, genus: i64, 
         assert!((crate::norm(*n) - 1.0).abs() < 1e-12);
         assert!(n[0] * g[0] + n[1] * g[1] + n[2] * g[2] < 0.0);
     }
-    // No slivers.
+    // No slivers, and no triangle turned over: each faces the way its vertices' normals do.
     let p = mesh.positions();
+    for t in mesh.triangles() {
+        let [a, b, c] = t.map(|v| p[v as usize]);
+        let e: [[f64; 3]; 2] = [
+            core::array::from_fn(|d| b[d] - a[d]),
+            core::array::from_fn(|d| c[d] - a[d]),
+        ];
+        let n = [
+            e[0][1] * e[1][2] - e[0][2] * e[1][1],
+            e[0][2] * e[1][0] - e[0][0] * e[1][2],
+            e[0][0] * e[1][1] - e[0][1] * e[1][0],
+        ];
+        let vertex_normal: f64 = t
+            .iter()
+            .map(|&v| (0..3).map(|d| n[d] * normals[v as usize][d]).sum::<f64>())
+            .sum();
+        assert!(
+            vertex_normal > 0.0,
+            "{name}: triangle {t:?} faces against its vertices' normals"
+        );
+    }
     for t in mesh.triangles() {
         let angle = smallest_angle(t.map(|v| p[v as usize]));
         assert!(angle >= 5.0, "{name}: a triangle with an angle of {angle}°");
