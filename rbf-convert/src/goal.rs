@@ -86,6 +86,11 @@ impl Goal {
         })
     }
 
+    /// The mesh's winding tree, when the goal was made from a mesh.
+    pub(crate) fn tree(&self) -> Option<&WindingTree> {
+        self.mesh.as_ref()
+    }
+
     fn coords(&self, v: usize) -> [usize; 3] {
         let [_, ny, nz] = self.shape;
         [v / (ny * nz), (v / nz) % ny, v % nz]

@@ -117,13 +117,14 @@ pub fn convert_iterative(
             measure(mesh, &model, &probes, goal.h, added, probe_seconds);
         // Polish: pull back where the surface strays from the mesh itself, while that keeps
         // every probe satisfied.
-        let tree = WindingTree::new(mesh);
         for _ in 0..POLISH_ROUNDS {
-            let Some(s) = &surface else { break };
+            let (Some(s), Some(tree)) = (&surface, goal.tree()) else {
+                break;
+            };
             let room = settings
                 .max_constraints
                 .saturating_sub(model.constraints.len());
-            let extra = corrections(mesh, &tree, s, &model.constraints, goal.h);
+            let extra = corrections(mesh, tree, s, &model.constraints, goal.h);
             if extra.is_empty() || room == 0 {
                 break;
             }
