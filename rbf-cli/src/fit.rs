@@ -439,6 +439,12 @@ impl Job<'_> {
                     IterativeProgress::Preconditioning => {
                         format!("{rows} rows: factoring the subdomains")
                     }
+                    IterativeProgress::FarField { order } => {
+                        format!("{rows} rows: products through the far field (order {order})")
+                    }
+                    IterativeProgress::DirectSums => {
+                        format!("{rows} rows: products by direct sums")
+                    }
                     IterativeProgress::Iteration {
                         iteration,
                         estimate,

@@ -3,13 +3,14 @@
 //! core. Memory grows linearly with the rows; convergence is judged by the true residual.
 
 mod gmres;
+mod products;
 mod schwarz;
-mod tree;
 
-use rbf_core::{Fit, FitError, FitSettings, InterpolantView, Solution, SolveMethod, System};
+use rbf_core::{Fit, FitError, FitSettings, Solution, SolveMethod, System};
 
 use crate::probe::memory_budget;
 use gmres::{Acceptance, GmresLimits, fgmres};
+use products::{FAR_FIELD_ROWS, Products};
 use schwarz::Schwarz;
 pub use schwarz::SchwarzSettings;
 
@@ -30,6 +31,9 @@ pub struct IterativeOptions {
     pub restart: usize,
     /// The preconditioner's subdomain and coarse-level sizes.
     pub schwarz: SchwarzSettings,
+    /// Rows from which the products go through the far field (rbf-far) instead of direct sums;
+    /// 200 000 by default, where it starts to pay on a 2-core machine.
+    pub far_field_rows: usize,
     /// Return a fit that did not reach the tolerance in `max_iterations` (its report says how
     /// far it got) instead of [`FitError::NotConverged`], whatever its residual.
     pub allow_unconverged: bool,
@@ -42,6 +46,7 @@ impl Default for IterativeOptions {
             max_iterations: 300,
             restart: 40,
             schwarz: SchwarzSettings::default(),
+            far_field_rows: FAR_FIELD_ROWS,
             allow_unconverged: false,
         }
     }
@@ -52,6 +57,15 @@ impl Default for IterativeOptions {
 pub enum IterativeProgress {
     /// The preconditioner is being factored.
     Preconditioning,
+    /// The products go through the far field at this order (chosen so that its error at
+    /// sampled rows is within a quarter of the tolerance).
+    FarField {
+        /// Chebyshev points along a cluster's longest side.
+        order: usize,
+    },
+    /// A check found the far field less accurate at sampled rows than it claimed: the products
+    /// are direct sums from here on.
+    DirectSums,
     /// After an iteration: its number and the recurrence's estimate of the relative residual
     /// (2-norm of the residual over max|hᵢ|).
     Iteration {
@@ -106,7 +120,19 @@ pub fn solve_iterative<const D: usize>(
     let mut b = system.values().to_vec();
     b.extend(std::iter::repeat_n(0.0, m));
 
-    let apply = |x: &[f64], out: &mut [f64]| apply_system(system, x, out);
+    // From `far_field_rows` the products go through the far field, its order chosen on the
+    // first preconditioned direction (an approximation of the solution, with its
+    // cancellations) so that its error stays within a quarter of the tolerance.
+    let products = if k >= options.far_field_rows {
+        let trial = schwarz.apply(system, &b[..k], &b[k..]);
+        Products::far(system, &trial[..k], tolerance * hmax)
+    } else {
+        Products::direct(system)
+    };
+    if let Some(order) = products.order() {
+        progress(IterativeProgress::FarField { order });
+    }
+    let apply = |x: &[f64], out: &mut [f64]| products.apply(x, out);
     let precondition = |v: &[f64]| schwarz.apply(system, &v[..k], &v[k..]);
     let progress = std::cell::RefCell::new(progress);
     let mut last = f64::INFINITY;
@@ -117,6 +143,16 @@ pub fn solve_iterative<const D: usize>(
         let rg = r[k..].iter().fold(0.0_f64, |a, v| a.max(v.abs()));
         let wsum: f64 = x[..k].iter().map(|v| v.abs()).sum();
         last = rh / hmax;
+        if products.is_far() {
+            // The far field's residual, certified by direct sums at sampled rows; a far field
+            // that misses what it claims there gives way to direct sums.
+            let certified = products.certify(x, &r[..k]) / hmax;
+            if certified > tolerance.max(2.0 * last) {
+                products.use_direct();
+                (progress.borrow_mut())(IterativeProgress::DirectSums);
+            }
+            last = last.max(certified);
+        }
         (progress.borrow_mut())(IterativeProgress::Checked {
             iteration,
             residual: last,
@@ -167,7 +203,9 @@ pub fn solve_iterative<const D: usize>(
         max_residual: f64::INFINITY,
         ..*settings
     };
-    system.accept(
+    // The last check measured the returned iterate: by compensated direct sums, or by the far
+    // field and direct sums at sampled rows.
+    system.accept_measured(
         if end.converged || good_enough {
             settings
         } else {
@@ -181,34 +219,8 @@ pub fn solve_iterative<const D: usize>(
             refinements: 0,
             iterations: end.iterations,
         },
+        |_| last,
     )
-}
-
-/// out = [Φ + Λ, P; Pᵀ, 0] x, normalized, by direct sums on every core, compensated
-/// (`par_values_compensated`): the iteration can reduce the residual only as far as its
-/// products are exact, and plain sums stalled at 3e-6 of max|h| on 2·10⁵ rows.
-fn apply_system<const D: usize>(system: &System<D>, x: &[f64], out: &mut [f64]) {
-    let points = system.normalized_points();
-    let k = points.len();
-    let (w, c) = x.split_at(k);
-    let linear: [f64; D] = core::array::from_fn(|d| c[d + 1]);
-    let evaluated = InterpolantView::new(system.kernel(), points, w, c[0], linear)
-        .and_then(|f| f.par_values_compensated(points, &mut out[..k]));
-    if evaluated.is_err() {
-        out.fill(f64::NAN);
-        return;
-    }
-    for (i, (o, wi)) in out[..k].iter_mut().zip(w).enumerate() {
-        *o += system.normalized_smoothing(i) * wi;
-    }
-    let g = &mut out[k..];
-    g.fill(0.0);
-    for (wi, p) in w.iter().zip(points) {
-        g[0] += wi;
-        for d in 0..D {
-            g[d + 1] += wi * p[d];
-        }
-    }
 }
 
 /// Refuses an iterative solve of `rows` rows in `dim` dimensions whose factored subdomains and

@@ -14,7 +14,7 @@ use faer::linalg::solvers::{PartialPivLu, Solve};
 use rayon::prelude::*;
 use rbf_core::{InterpolantView, System};
 
-use super::tree::{Tree, bounds};
+use rbf_far::{Tree, bounds};
 
 /// Sizes of the preconditioner's pieces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

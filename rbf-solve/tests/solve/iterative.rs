@@ -213,3 +213,36 @@ fn a_duplicate_among_a_hundred_thousand_points_is_named_by_index() {
         other => panic!("expected Coincident, got {other:?}"),
     }
 }
+
+/// 2·10⁴ rows with the products through the far field: the fit meets its tolerance by direct
+/// sums at every row (measured here, outside the solver), as the solver's certification at
+/// sampled rows claimed.
+#[test]
+fn far_field_products_reach_the_tolerance_at_every_row() {
+    let cs = bumpy(10_000, 77);
+    let settings = FitSettings {
+        max_residual: 1e-4,
+        ..FitSettings::default()
+    };
+    let system = System::new(&cs, &settings).unwrap();
+    let options = IterativeOptions {
+        far_field_rows: 10_000,
+        ..IterativeOptions::default()
+    };
+    let mut orders = Vec::new();
+    let fit = solve_iterative(&system, &settings, &options, |p| {
+        if let IterativeProgress::FarField { order } = p {
+            orders.push(order);
+        }
+    })
+    .unwrap();
+    assert_eq!(orders.len(), 1, "the far field was chosen once");
+    assert!(fit.report.residual <= 1e-4, "{:?}", fit.report);
+    let measured = system.relative_residual(&fit.interpolant);
+    assert!(measured <= 1e-4, "residual {measured:e} at some row");
+    assert!(
+        measured <= 1.01 * fit.report.residual,
+        "the report ({:e}) does not understate the residual ({measured:e})",
+        fit.report.residual
+    );
+}

@@ -1,26 +1,43 @@
 //! A k-d tree of points: median splits along the box's longest side, leaves of bounded size.
-//! The iterative solver's subdomains are its leaves; neighbour queries gather their overlaps.
+//! The far field's clusters are its nodes; the iterative solver's subdomains are its leaves, and
+//! its neighbour queries gather their overlaps.
 
-/// A node covers `order[start..end]`; leaves have no children.
+/// A node covers `order[start..end]`; leaves have no children. Children have larger indices
+/// than their parent.
 #[derive(Clone, Debug)]
-pub(crate) struct Node<const D: usize> {
-    pub(crate) start: usize,
-    pub(crate) end: usize,
-    pub(crate) lo: [f64; D],
-    pub(crate) hi: [f64; D],
-    pub(crate) children: Option<(usize, usize)>,
+pub struct Node<const D: usize> {
+    /// First position in [`Tree::order`].
+    pub start: usize,
+    /// One past the last position in [`Tree::order`].
+    pub end: usize,
+    /// The lower corner of the node's points' bounding box.
+    pub lo: [f64; D],
+    /// The upper corner.
+    pub hi: [f64; D],
+    /// The two children, or `None` for a leaf.
+    pub children: Option<(usize, usize)>,
 }
 
 /// The tree; `order` lists point indices so that every node's points are contiguous.
+///
+/// ```
+/// use rbf_far::Tree;
+/// let points: Vec<[f64; 2]> = (0..100).map(|i| [i as f64, (i * 7 % 10) as f64]).collect();
+/// let tree = Tree::new(&points, 8);
+/// assert!(tree.leaves().iter().all(|&l| tree.points_of(l).len() <= 8));
+/// assert_eq!(tree.points_of(0).len(), 100); // the root holds every point
+/// ```
 #[derive(Clone, Debug)]
-pub(crate) struct Tree<const D: usize> {
-    pub(crate) nodes: Vec<Node<D>>,
-    pub(crate) order: Vec<usize>,
+pub struct Tree<const D: usize> {
+    /// Nodes, the root first, every parent before its children.
+    pub nodes: Vec<Node<D>>,
+    /// Point indices, each node's contiguous.
+    pub order: Vec<usize>,
 }
 
 impl<const D: usize> Tree<D> {
     /// Splits until no leaf holds more than `leaf_size` points (at least 1).
-    pub(crate) fn new(points: &[[f64; D]], leaf_size: usize) -> Self {
+    pub fn new(points: &[[f64; D]], leaf_size: usize) -> Self {
         let leaf_size = leaf_size.max(1);
         let mut tree = Self {
             nodes: Vec::new(),
@@ -58,20 +75,20 @@ impl<const D: usize> Tree<D> {
     }
 
     /// Indices of the leaves, left to right.
-    pub(crate) fn leaves(&self) -> Vec<usize> {
+    pub fn leaves(&self) -> Vec<usize> {
         (0..self.nodes.len())
             .filter(|&i| self.nodes[i].children.is_none())
             .collect()
     }
 
     /// The points of node `i`.
-    pub(crate) fn points_of(&self, i: usize) -> &[usize] {
+    pub fn points_of(&self, i: usize) -> &[usize] {
         &self.order[self.nodes[i].start..self.nodes[i].end]
     }
 
     /// Every point within distance `radius` of the box [lo, hi], with its squared distance
     /// to the box, appended to `out`.
-    pub(crate) fn near_box(
+    pub fn near_box(
         &self,
         points: &[[f64; D]],
         lo: &[f64; D],
@@ -102,7 +119,7 @@ impl<const D: usize> Tree<D> {
 }
 
 /// The bounding box of `points[idx]`.
-pub(crate) fn bounds<const D: usize>(points: &[[f64; D]], idx: &[usize]) -> ([f64; D], [f64; D]) {
+pub fn bounds<const D: usize>(points: &[[f64; D]], idx: &[usize]) -> ([f64; D], [f64; D]) {
     let mut lo = [f64::INFINITY; D];
     let mut hi = [f64::NEG_INFINITY; D];
     for &i in idx {
@@ -115,7 +132,7 @@ pub(crate) fn bounds<const D: usize>(points: &[[f64; D]], idx: &[usize]) -> ([f6
 }
 
 /// Squared distance from a point to a box (0 inside).
-fn point_gap2<const D: usize>(p: &[f64; D], lo: &[f64; D], hi: &[f64; D]) -> f64 {
+pub fn point_gap2<const D: usize>(p: &[f64; D], lo: &[f64; D], hi: &[f64; D]) -> f64 {
     (0..D)
         .map(|d| {
             let g = (lo[d] - p[d]).max(p[d] - hi[d]).max(0.0);
@@ -125,7 +142,12 @@ fn point_gap2<const D: usize>(p: &[f64; D], lo: &[f64; D], hi: &[f64; D]) -> f64
 }
 
 /// Squared distance between two boxes (0 if they meet).
-fn box_gap2<const D: usize>(alo: &[f64; D], ahi: &[f64; D], blo: &[f64; D], bhi: &[f64; D]) -> f64 {
+pub fn box_gap2<const D: usize>(
+    alo: &[f64; D],
+    ahi: &[f64; D],
+    blo: &[f64; D],
+    bhi: &[f64; D],
+) -> f64 {
     (0..D)
         .map(|d| {
             let g = (blo[d] - ahi[d]).max(alo[d] - bhi[d]).max(0.0);

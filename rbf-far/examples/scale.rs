@@ -1,0 +1,41 @@
+//! Times one far-field product at the centres for N points on a bumpy sphere (random weights):
+//!
+//!     cargo run --release -p rbf-far --example scale -- N order theta
+use std::time::Instant;
+
+use rbf_core::Kernel;
+use rbf_far::{FarField, FarFieldSettings};
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let n: usize = args[0].parse().unwrap();
+    let settings = FarFieldSettings {
+        order: args[1].parse().unwrap(),
+        theta: args[2].parse().unwrap(),
+        ..FarFieldSettings::default()
+    };
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let centres: Vec<[f64; 3]> = (0..n)
+        .map(|i| {
+            let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+            let r = (1.0 - z * z).sqrt();
+            let t = golden * i as f64;
+            let s = 1.0 + 0.1 * (5.0 * z.acos()).sin() * (3.0 * t).cos();
+            [s * r * t.cos(), s * r * t.sin(), s * z]
+        })
+        .collect();
+    let weights: Vec<f64> = (0..n)
+        .map(|i| ((i * 7919 % 1000) as f64 - 499.5) / 500.0)
+        .collect();
+    let t = Instant::now();
+    let field = FarField::new(Kernel::Cubic, &centres, &settings);
+    let charges = field.charges(&weights);
+    let setup = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let mut out = vec![0.0; n];
+    field.self_values(&charges, &mut out);
+    println!(
+        "N {n}: setup {setup:.2} s, product {:.2} s",
+        t.elapsed().as_secs_f64()
+    );
+}

@@ -1,0 +1,161 @@
+//! Evaluation of a large model at many points to a stated accuracy: the far field where it is
+//! faster and its error, measured against compensated direct sums at sampled points, is within
+//! what was asked; direct sums otherwise.
+
+use rbf_core::{InterpolantView, LengthMismatch};
+
+use crate::field::{Charges, FarField, calibrated};
+
+/// Centres below which direct sums are used whatever the number of points (the far field does
+/// not pay there).
+pub const FAR_FIELD_CENTRES: usize = 20_000;
+
+/// Points at which the far field's error is measured before it is trusted.
+const SAMPLED_POINTS: usize = 1000;
+
+/// How an [`Evaluator`] evaluates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// Direct sums over every centre.
+    Direct,
+    /// The far field at this order, with the error measured at sampled points.
+    FarField {
+        /// Chebyshev points along a cluster's longest side.
+        order: usize,
+        /// The largest error seen at the sampled points, in the model's units.
+        sampled_error: f64,
+    },
+}
+
+/// f and ∇f of a model at many points, within an absolute accuracy.
+///
+/// ```
+/// use rbf_core::{InterpolantView, Kernel};
+/// use rbf_far::{Evaluator, Method};
+/// let centres: Vec<[f64; 3]> = (0..30_000)
+///     .map(|i| { let t = i as f64 * 1e-3; [t.cos(), t.sin(), (5.0 * t).sin()] })
+///     .collect();
+/// let weights: Vec<f64> = (0..30_000).map(|i| if i % 2 == 0 { 1e-4 } else { -1e-4 }).collect();
+/// let f = InterpolantView::new(Kernel::Cubic, &centres, &weights, 1.0, [0.0; 3]).unwrap();
+/// let points: Vec<[f64; 3]> = (0..20_000).map(|i| [0.0, 0.0, i as f64 * 1e-4]).collect();
+/// let evaluator = Evaluator::new(f, &points, 1e-9);
+/// assert!(matches!(evaluator.method(), Method::FarField { .. }));
+/// let mut out = vec![0.0; points.len()];
+/// evaluator.values(&points, &mut out).unwrap();
+/// let mut exact = [0.0];
+/// f.values(&points[123..124], &mut exact).unwrap();
+/// assert!((out[123] - exact[0]).abs() <= 1e-9);
+/// ```
+pub struct Evaluator<'a, const D: usize> {
+    view: InterpolantView<'a, f64, D>,
+    far: Option<(FarField<D>, Charges)>,
+    method: Method,
+}
+
+impl<'a, const D: usize> Evaluator<'a, D> {
+    /// Chooses the method for evaluating `view` at `points` (or points like them) within
+    /// `accuracy` (absolute, in the model's units): the far field at the lowest order whose
+    /// error at sampled points of `points` is within half the accuracy, when the model is large
+    /// enough for it to pay; direct sums otherwise.
+    pub fn new(view: InterpolantView<'a, f64, D>, points: &[[f64; D]], accuracy: f64) -> Self {
+        let direct = Self::direct(view);
+        let k = view.centres().len();
+        if k < FAR_FIELD_CENTRES || points.len() < SAMPLED_POINTS || !(accuracy > 0.0) {
+            return direct;
+        }
+        let sample: Vec<[f64; D]> = (0..SAMPLED_POINTS)
+            .map(|i| points[i * points.len() / SAMPLED_POINTS])
+            .collect();
+        match calibrated(
+            view.kernel(),
+            view.centres(),
+            view.weights(),
+            &sample,
+            0.5 * accuracy,
+        ) {
+            Some((field, charges, sampled_error)) => Self {
+                view,
+                method: Method::FarField {
+                    order: field.settings().order,
+                    sampled_error,
+                },
+                far: Some((field, charges)),
+            },
+            None => direct,
+        }
+    }
+
+    /// Direct sums over every centre.
+    pub fn direct(view: InterpolantView<'a, f64, D>) -> Self {
+        Self {
+            view,
+            far: None,
+            method: Method::Direct,
+        }
+    }
+
+    /// The method chosen.
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
+    /// `out[i] = f(points[i])`.
+    pub fn values(&self, points: &[[f64; D]], out: &mut [f64]) -> Result<(), LengthMismatch> {
+        match &self.far {
+            None => self.view.par_values(points, out),
+            Some((field, charges)) => {
+                if out.len() != points.len() {
+                    return Err(LengthMismatch {
+                        what: "output",
+                        expected: points.len(),
+                        found: out.len(),
+                    });
+                }
+                field.values(charges, points, out);
+                for (o, p) in out.iter_mut().zip(points) {
+                    *o += self.affine(p);
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// f and ∇f at every point.
+    pub fn values_and_gradients(
+        &self,
+        points: &[[f64; D]],
+        values: &mut [f64],
+        gradients: &mut [[f64; D]],
+    ) -> Result<(), LengthMismatch> {
+        match &self.far {
+            None => self
+                .view
+                .par_values_and_gradients(points, values, gradients),
+            Some((field, charges)) => {
+                for (what, found) in [("values", values.len()), ("gradients", gradients.len())] {
+                    if found != points.len() {
+                        return Err(LengthMismatch {
+                            what,
+                            expected: points.len(),
+                            found,
+                        });
+                    }
+                }
+                field.values_and_gradients(charges, points, values, gradients);
+                let linear = self.view.linear();
+                for ((v, g), p) in values.iter_mut().zip(gradients.iter_mut()).zip(points) {
+                    *v += self.affine(p);
+                    for d in 0..D {
+                        g[d] += linear[d];
+                    }
+                }
+                Ok(())
+            }
+        }
+    }
+
+    fn affine(&self, p: &[f64; D]) -> f64 {
+        let linear = self.view.linear();
+        self.view.constant() + (0..D).map(|d| linear[d] * p[d]).sum::<f64>()
+    }
+}
