@@ -206,6 +206,35 @@ fn malformed_json_and_models_exit_2() {
 }
 
 #[test]
+fn eval_refuses_an_accuracy_that_is_not_positive_and_finite() {
+    let dir = tempfile::tempdir().unwrap();
+    let (model, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &["-q"]);
+    assert!(o.status.success());
+    let m = model.to_str().unwrap();
+    for bad in ["0", "-1e-6", "NaN", "inf"] {
+        let option = format!("--accuracy={bad}");
+        let o = rbf(&["eval", m, "-", &option], Some("0 0 0\n"));
+        assert_eq!(o.status.code(), Some(1), "--accuracy {bad}");
+        assert!(stderr(&o).contains("--accuracy"), "{}", stderr(&o));
+        assert!(o.stdout.is_empty(), "nothing written for --accuracy {bad}");
+    }
+    // --exact and a positive accuracy give the direct sums' values on a small model.
+    let exact = rbf(&["eval", m, "-", "--exact"], Some("0 0 0\n"));
+    let loose = rbf(&["eval", m, "-", "--accuracy", "1e-3"], Some("0 0 0\n"));
+    assert!(exact.status.success() && loose.status.success());
+    assert_eq!(exact.stdout, loose.stdout);
+    let both = rbf(
+        &["eval", m, "-", "--exact", "--accuracy", "1e-3"],
+        Some("0 0 0\n"),
+    );
+    assert_eq!(
+        both.status.code(),
+        Some(1),
+        "--exact conflicts with --accuracy"
+    );
+}
+
+#[test]
 fn eval_checks_the_points_dimension() {
     let dir = tempfile::tempdir().unwrap();
     let (model, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &["-q"]);
