@@ -6,10 +6,10 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use rayon::prelude::*;
 use rbf_core::{AnyModel, Model};
-use rbf_far::Evaluator;
 
+use crate::accuracy::AccuracyArgs;
 use crate::common::{read_model, read_text, write_atomically};
-use crate::failure::{BAD_INPUT, Failure, USAGE};
+use crate::failure::{BAD_INPUT, Failure};
 
 pub(crate) const HELP: &str = "\
 POINTS holds one point per line (x y z, or x y for a 2D model; # starts a comment), or is a
@@ -42,13 +42,8 @@ pub(crate) struct EvalArgs {
     /// otherwise.
     #[arg(short, long, value_name = "OUT")]
     output: Option<PathBuf>,
-    /// Largest error allowed in f, in the model's units (default: 1e-6 of the diagonal of the
-    /// centres' bounding box).
-    #[arg(long, value_name = "A", conflicts_with = "exact")]
-    accuracy: Option<f64>,
-    /// Sum over every centre directly, however large the model.
-    #[arg(long)]
-    exact: bool,
+    #[command(flatten)]
+    sums: AccuracyArgs,
 }
 
 pub(crate) fn run(args: &EvalArgs) -> Result<(), Failure> {
@@ -101,37 +96,9 @@ fn read_points<const D: usize>(path: &Path) -> Result<Vec<[f64; D]>, Failure> {
         .map_err(|e| Failure::new(BAD_INPUT, format!("{name}: {e} (the model is {D}D)")))
 }
 
-/// A positive, finite accuracy, or a usage error naming `--accuracy`.
-fn check_accuracy(a: f64) -> Result<f64, Failure> {
-    if a > 0.0 && a.is_finite() {
-        Ok(a)
-    } else {
-        Err(Failure::new(
-            USAGE,
-            format!("--accuracy {a}: the accuracy must be a finite number > 0"),
-        ))
-    }
-}
-
-/// The diagonal of the points' bounding box (1 if there are none, or all coincide).
-fn diagonal<const D: usize>(points: &[[f64; D]]) -> f64 {
-    let (lo, hi) = rbf_far::bounds(points, &(0..points.len()).collect::<Vec<_>>());
-    let d = (0..D).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt();
-    if d > 0.0 && d.is_finite() { d } else { 1.0 }
-}
-
 fn eval<const D: usize>(model: &Model<D>, args: &EvalArgs) -> Result<(), Failure> {
     let points = read_points::<D>(&args.points)?;
-    let view = model.interpolant.view();
-    let accuracy = match args.accuracy {
-        Some(a) => check_accuracy(a)?,
-        None => 1e-6 * diagonal(view.centres()),
-    };
-    let f = if args.exact {
-        Evaluator::direct(view)
-    } else {
-        Evaluator::new(view, &points, accuracy)
-    };
+    let f = args.sums.evaluator(model.interpolant.view(), &points)?;
     // Row by row: the value, then the gradient if asked.
     let width = if args.gradient { 1 + D } else { 1 };
     let mut out = vec![0.0; points.len() * width];

@@ -77,9 +77,11 @@ pub(crate) struct FitArgs {
     /// (coincident constraints make the system singular).
     #[arg(long, value_name = "F", default_value_t = 1e-9)]
     min_separation: f64,
-    /// Largest accepted residual max|f(cᵢ) − hᵢ| / max|hᵢ|; a fit that misses it fails.
-    #[arg(long, value_name = "R", default_value_t = 1e-6)]
-    max_residual: f64,
+    /// Largest accepted residual max|f(cᵢ) − hᵢ| / max|hᵢ|; a fit that misses it fails
+    /// [default: 1e-6; without it, an iterative solve that stalls at the rounding floor of its
+    /// products is accepted with a note].
+    #[arg(long, value_name = "R")]
+    max_residual: Option<f64>,
     /// How the system is solved (see below).
     #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     method: MethodArg,
@@ -194,7 +196,9 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
         settings.lambda = l;
     }
     settings.min_separation = args.min_separation;
-    settings.max_residual = args.max_residual;
+    if let Some(r) = args.max_residual {
+        settings.max_residual = r;
+    }
     if let Some(o) = args.offset {
         settings.normal_offset = NormalOffset::Absolute(o);
     }
@@ -238,6 +242,8 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
         iterative: IterativeOptions {
             max_iterations: args.max_iterations,
             allow_unconverged: args.allow_unconverged,
+            // A limit the user set is kept: missing it is an error, not a note.
+            accept_rounding_floor: args.max_residual.is_none(),
             ..Default::default()
         },
         greedy: GreedySettings {
@@ -432,11 +438,15 @@ impl Job<'_> {
         let spinner = spinner(self.quiet, format!("checking {rows} rows"));
         let system =
             System::new(&constraints, &self.settings).map_err(|e| Failure::fit(self.source, &e))?;
+        let rounding_floor = std::cell::Cell::new(None);
         let fit = if dense {
             spinner.set_message(format!("solving a dense system of {rows} rows"));
             rbf_solve::solve(&system, &self.settings, &self.options)
         } else {
             rbf_solve::solve_iterative(&system, &self.settings, &self.iterative, |p| {
+                if let IterativeProgress::RoundingFloor { floor, .. } = p {
+                    rounding_floor.set(Some(floor));
+                }
                 spinner.set_message(match p {
                     IterativeProgress::Preconditioning => {
                         format!("{rows} rows: factoring the subdomains")
@@ -446,6 +456,11 @@ impl Job<'_> {
                     }
                     IterativeProgress::DirectSums => {
                         format!("{rows} rows: products by direct sums")
+                    }
+                    IterativeProgress::RoundingFloor { residual, .. } => {
+                        format!(
+                            "{rows} rows: stopped at residual {residual:.1e}, the rounding floor"
+                        )
                     }
                     IterativeProgress::Iteration {
                         iteration,
@@ -469,9 +484,15 @@ impl Job<'_> {
             report: Some(report),
         };
         write_atomically(self.output, model.to_json().as_bytes())?;
-        // Only --allow-unconverged lets a fit above the limit through.
+        // A fit above the limit: stopped where double precision stops it, or let through by
+        // --allow-unconverged.
         let limit = self.settings.max_residual;
-        if report.method == SolveMethod::Iterative && report.residual > limit {
+        if let Some(floor) = rounding_floor.get() {
+            eprintln!(
+                "rbf: note: the iterative solve stalled at residual {:.1e}, above --max-residual {limit:.1e} but within what double precision allows for these constraints ({floor:.1e}: their weights are large and cancel); the model was written with that residual (a small --lambda gives a smoother, better conditioned fit)",
+                report.residual
+            );
+        } else if report.method == SolveMethod::Iterative && report.residual > limit {
             eprintln!(
                 "rbf: warning: the iterative solve stopped at residual {:.1e} after {} iterations, above --max-residual {limit:.1e}",
                 report.residual, report.iterations

@@ -5,6 +5,7 @@
 //! Gary Yngve and Greg Turk, "Robust Creation of Implicit Surfaces from Polygonal Meshes", IEEE
 //! Transactions on Visualization and Computer Graphics 8(4), 2002 (Yngve & Turk 2002).
 
+mod accuracy;
 mod blend;
 mod check;
 mod common;

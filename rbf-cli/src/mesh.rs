@@ -9,6 +9,7 @@ use rbf_mesh::{
     write_mesh,
 };
 
+use crate::accuracy::AccuracyArgs;
 use crate::common::read_model_3d;
 use crate::failure::{BAD_INPUT, Failure};
 
@@ -20,7 +21,8 @@ finding and carry normals from the gradient.
 Examples:
   rbf mesh model.json -o surface.obj
   rbf mesh model.json -o surface.ply --resolution 256
-  rbf mesh model.json -o surface.stl --cell-size 0.01 --method grid";
+  rbf mesh model.json -o surface.stl --cell-size 0.01 --method grid
+  rbf mesh big.json -o big.ply --resolution 256 --accuracy 1e-5";
 
 #[derive(Args, Debug)]
 pub(crate) struct MeshArgs {
@@ -38,6 +40,8 @@ pub(crate) struct MeshArgs {
     /// Polygonizer: crawl the surface from its constraints, or sample the whole grid.
     #[arg(long, value_enum, default_value_t = Method::Continuation)]
     method: Method,
+    #[command(flatten)]
+    sums: AccuracyArgs,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -62,8 +66,9 @@ pub(crate) fn run(args: &MeshArgs, quiet: bool) -> Result<(), Failure> {
         resolution,
         ..Default::default()
     };
-    let f = model.interpolant.view();
     let start = Instant::now();
+    let view = model.interpolant.view();
+    let f = args.sums.evaluator(view, view.centres())?;
     let spinner = crate::common::spinner(quiet, "polygonizing".into());
     let result = match args.method {
         Method::Continuation => polygonize_continuation(&f, &surface_seeds(&model), &settings),

@@ -9,6 +9,7 @@ use rbf_render::{
     Camera, Csg, Lipschitz, MeshStyle, Object, RenderSettings, render, render_mesh, surface_bounds,
 };
 
+use crate::accuracy::AccuracyArgs;
 use crate::common::{read_mesh, read_model_3d, write_atomically};
 use crate::failure::{BAD_INPUT, Failure, USAGE};
 
@@ -91,6 +92,8 @@ pub(crate) struct RenderArgs {
     /// Smooth shading of a mesh (interpolated vertex normals) instead of flat facets.
     #[arg(long)]
     smooth: bool,
+    #[command(flatten)]
+    sums: AccuracyArgs,
 }
 
 /// Step bounds by their command-line names.
@@ -176,7 +179,13 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
             .iter()
             .map(|p| read_model_3d(p, "render"))
             .collect::<Result<_, _>>()?;
-        let views: Vec<_> = models.iter().map(|m| m.interpolant.view()).collect();
+        let views: Vec<_> = models
+            .iter()
+            .map(|m| {
+                let view = m.interpolant.view();
+                args.sums.evaluator(view, view.centres())
+            })
+            .collect::<Result<_, _>>()?;
         let all: Vec<Csg> = (0..models.len()).map(Csg::Model).collect();
         let mut objects: Vec<Object> = if args.union {
             vec![Object::new(Csg::Union(all), 0)]

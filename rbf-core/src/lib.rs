@@ -54,6 +54,7 @@ extern crate alloc;
 extern crate std;
 
 mod bound;
+mod field;
 mod kernel;
 mod math;
 mod real;
@@ -66,6 +67,7 @@ pub mod vec3;
 mod parallel;
 
 pub use bound::BallBound;
+pub use field::ScalarField;
 pub use kernel::Kernel;
 pub use real::Real;
 pub use view::{InterpolantView, LengthMismatch};

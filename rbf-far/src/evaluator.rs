@@ -2,7 +2,7 @@
 //! faster and its error, measured against compensated direct sums at sampled points, is within
 //! what was asked; direct sums otherwise.
 
-use rbf_core::{InterpolantView, LengthMismatch};
+use rbf_core::{InterpolantView, LengthMismatch, ScalarField};
 
 use crate::field::{Charges, FarField, calibrated};
 
@@ -157,5 +157,24 @@ impl<'a, const D: usize> Evaluator<'a, D> {
     fn affine(&self, p: &[f64; D]) -> f64 {
         let linear = self.view.linear();
         self.view.constant() + (0..D).map(|d| linear[d] * p[d]).sum::<f64>()
+    }
+}
+
+impl<const D: usize> ScalarField<D> for Evaluator<'_, D> {
+    fn direct(&self) -> InterpolantView<'_, f64, D> {
+        self.view
+    }
+
+    fn field_values(&self, points: &[[f64; D]], out: &mut [f64]) -> Result<(), LengthMismatch> {
+        self.values(points, out)
+    }
+
+    fn field_values_and_gradients(
+        &self,
+        points: &[[f64; D]],
+        values: &mut [f64],
+        gradients: &mut [[f64; D]],
+    ) -> Result<(), LengthMismatch> {
+        self.values_and_gradients(points, values, gradients)
     }
 }

@@ -7,7 +7,7 @@
 //! feature whose peak lies between the samples along the ray can still be missed).
 
 use rayon::prelude::*;
-use rbf_core::InterpolantView;
+use rbf_core::ScalarField;
 use rbf_core::vec3::Vec3;
 
 use crate::camera::Ray;
@@ -44,7 +44,7 @@ impl Band {
     /// Samples F in every cell (of the lattice of `n` cells of size `cell` from `lo`) for which
     /// `occupied` holds.
     pub(crate) fn new(
-        views: &[InterpolantView<'_, f64, 3>],
+        views: &[&dyn ScalarField<3>],
         csg: &Csg,
         lo: Vec3,
         cell: Vec3,
@@ -89,7 +89,7 @@ impl Band {
         for &m in &used {
             per_model[m] = vec![0.0; points.len()];
             // Equal lengths by construction.
-            let _ = views[m].par_values(&points, &mut per_model[m]);
+            let _ = views[m].field_values(&points, &mut per_model[m]);
         }
         let solid: Vec<f64> = (0..points.len())
             .into_par_iter()

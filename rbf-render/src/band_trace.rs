@@ -91,8 +91,11 @@ impl Tracer<'_, '_> {
                 values[m].resize(points.len(), 0.0);
                 gradients[m].resize(points.len(), [0.0; 3]);
                 // Equal lengths by construction.
-                let _ =
-                    self.views[m].values_and_gradients(&points, &mut values[m], &mut gradients[m]);
+                let _ = self.views[m].field_values_and_gradients(
+                    &points,
+                    &mut values[m],
+                    &mut gradients[m],
+                );
             }
             let mut k = 0;
             polishing.retain_mut(|p| {

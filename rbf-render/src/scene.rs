@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use rayon::prelude::*;
-use rbf_core::InterpolantView;
+use rbf_core::ScalarField;
 
 use crate::RenderError;
 use crate::camera::{Camera, Ray};
@@ -101,8 +101,8 @@ struct Renderer<'s, 'm> {
 /// assert_eq!((image.width(), image.height()), (64, 48));
 /// assert!(stats.evaluations > 0);
 /// ```
-pub fn render(
-    models: &[InterpolantView<'_, f64, 3>],
+pub fn render<F: ScalarField<3>>(
+    models: &[F],
     objects: &[Object],
     camera: &Camera,
     settings: &RenderSettings,
@@ -118,11 +118,12 @@ pub fn render(
         return Err(RenderError::Samples(settings.samples));
     }
     let start = Instant::now();
+    let fields = fields(models);
     let tracers: Vec<Tracer<'_, '_>> = objects
         .iter()
         .map(|o| {
             Tracer::new(
-                models,
+                &fields,
                 &o.shape,
                 settings.cells_for(camera.width.max(camera.height)),
                 settings.lipschitz,
@@ -258,8 +259,8 @@ pub fn render(
 ///     &RenderSettings::default()).unwrap();
 /// assert!(lo.iter().all(|&v| v < -1.0 && v > -1.3) && hi.iter().all(|&v| v > 1.0 && v < 1.3));
 /// ```
-pub fn surface_bounds(
-    models: &[InterpolantView<'_, f64, 3>],
+pub fn surface_bounds<F: ScalarField<3>>(
+    models: &[F],
     objects: &[Object],
     settings: &RenderSettings,
 ) -> Result<([f64; 3], [f64; 3]), RenderError> {
@@ -267,10 +268,11 @@ pub fn surface_bounds(
         return Err(RenderError::NoObjects);
     }
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    let fields = fields(models);
     for o in objects {
         o.shape.validate(models.len())?;
         let tracer = Tracer::new(
-            models,
+            &fields,
             &o.shape,
             settings.cells_for(0),
             settings.lipschitz,
@@ -300,15 +302,16 @@ pub fn surface_bounds(
 /// let hits = first_hits(&[sphere], &Csg::Model(0), &[ray], &RenderSettings::default()).unwrap();
 /// assert!((hits[0].unwrap() - 4.0).abs() < 1e-9);
 /// ```
-pub fn first_hits(
-    models: &[InterpolantView<'_, f64, 3>],
+pub fn first_hits<F: ScalarField<3>>(
+    models: &[F],
     shape: &Csg,
     rays: &[Ray],
     settings: &RenderSettings,
 ) -> Result<Vec<Option<f64>>, RenderError> {
     shape.validate(models.len())?;
+    let fields = fields(models);
     let tracer = Tracer::new(
-        models,
+        &fields,
         shape,
         settings.cells_for(0),
         settings.lipschitz,
@@ -456,4 +459,9 @@ impl Renderer<'_, '_> {
     fn checker(&self, p: Vec3) -> [f64; 3] {
         checker(p, self.ground.map_or(1.0, |g| g.1))
     }
+}
+
+/// The models as the tracer takes them.
+fn fields<F: ScalarField<3>>(models: &[F]) -> Vec<&dyn ScalarField<3>> {
+    models.iter().map(|m| m as &dyn ScalarField<3>).collect()
 }

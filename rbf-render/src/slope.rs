@@ -3,7 +3,7 @@
 //! the weights' spread that proves steps for the r³ kernel.
 
 use rbf_core::vec3::{Vec3, norm, sub};
-use rbf_core::{InterpolantView, Kernel};
+use rbf_core::{InterpolantView, Kernel, ScalarField};
 
 /// What bounds a model's change around a point.
 #[derive(Clone, Copy, Debug)]
@@ -48,7 +48,7 @@ impl Spread {
 /// Per cell: 1.5 times the largest |∇f| at its eight corners and its centre; and f at its
 /// centre.
 pub(crate) fn estimate_cells(
-    f: &InterpolantView<'_, f64, 3>,
+    f: &dyn ScalarField<3>,
     lo: Vec3,
     cell: Vec3,
     n: [usize; 3],
@@ -70,7 +70,7 @@ pub(crate) fn estimate_cells(
         let mut values = vec![0.0; points.len()];
         let mut gradients = vec![[0.0; 3]; points.len()];
         // Equal lengths by construction.
-        let _ = f.par_values_and_gradients(points, &mut values, &mut gradients);
+        let _ = f.field_values_and_gradients(points, &mut values, &mut gradients);
         (values, gradients.into_iter().map(norm).collect())
     };
     let (_, corner_slopes) = evaluate(&corners);

@@ -6,7 +6,7 @@
 //! bracketing root finder that puts the hit on the surface.
 
 use rayon::prelude::*;
-use rbf_core::{InterpolantView, Kernel};
+use rbf_core::{Kernel, ScalarField};
 
 use crate::band::Band;
 use crate::camera::Ray;
@@ -44,7 +44,7 @@ const MAX_STEPS: usize = 4000;
 
 /// A solid prepared for tracing.
 pub(crate) struct Tracer<'s, 'm> {
-    pub(crate) views: &'s [InterpolantView<'m, f64, 3>],
+    pub(crate) views: &'s [&'m dyn ScalarField<3>],
     pub(crate) csg: &'s Csg,
     pub(crate) used: Vec<usize>,
     pub(crate) lo: Vec3,
@@ -82,7 +82,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
     /// side; with [`Lipschitz::Auto`] and `sample_band`, samples F finely in the cells that can
     /// hold surface and traces through those samples.
     pub(crate) fn new(
-        views: &'s [InterpolantView<'m, f64, 3>],
+        views: &'s [&'m dyn ScalarField<3>],
         csg: &'s Csg,
         cells: usize,
         mode: Lipschitz,
@@ -91,7 +91,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
         let used = csg.models();
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         for &m in &used {
-            let (a, b) = views[m].surface_box(0.05);
+            let (a, b) = views[m].direct().surface_box(0.05);
             for d in 0..3 {
                 lo[d] = lo[d].min(a[d]);
                 hi[d] = hi[d].max(b[d]);
@@ -112,7 +112,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
         let mut estimated: Vec<Vec<f64>> = vec![Vec::new(); views.len()];
         let mut centre_values: Vec<Vec<f64>> = vec![Vec::new(); views.len()];
         for &m in &used {
-            let (e, v) = estimate_cells(&views[m], lo, cell, n);
+            let (e, v) = estimate_cells(views[m], lo, cell, n);
             estimated[m] = e;
             centre_values[m] = v;
         }
@@ -129,7 +129,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
                     let mut bounds = vec![(0.0, 0.0); views.len()];
                     let mut slopes = vec![0.0; views.len()];
                     for &m in &used {
-                        let b = views[m].ball_bound(&centre, radius);
+                        let b = views[m].direct().ball_bound(&centre, radius);
                         bounds[m] = (b.value - b.change, b.value + b.change);
                         slopes[m] = b.lipschitz;
                     }
@@ -158,8 +158,10 @@ impl<'s, 'm> Tracer<'s, 'm> {
             .iter()
             .enumerate()
             .map(|(m, v)| {
-                (mode == Lipschitz::Guaranteed && used.contains(&m) && v.kernel() == Kernel::Cubic)
-                    .then(|| Spread::new(v))
+                (mode == Lipschitz::Guaranteed
+                    && used.contains(&m)
+                    && v.direct().kernel() == Kernel::Cubic)
+                    .then(|| Spread::new(&v.direct()))
             })
             .collect();
         // Models whose steps stop at their cell's far side (their bound holds in the cell only).
@@ -167,7 +169,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
             .iter()
             .map(|v| match mode {
                 Lipschitz::Estimated => true,
-                Lipschitz::Guaranteed => v.kernel() == Kernel::ThinPlate,
+                Lipschitz::Guaranteed => v.direct().kernel() == Kernel::ThinPlate,
                 _ => false,
             })
             .collect();
@@ -176,10 +178,10 @@ impl<'s, 'm> Tracer<'s, 'm> {
             .enumerate()
             .map(|(m, v)| match mode {
                 _ if !used.contains(&m) => 0.0,
-                Lipschitz::Sampled(count) => sampled_slope(v, lo, hi, count),
+                Lipschitz::Sampled(count) => sampled_slope(&v.direct(), lo, hi, count),
                 _ => {
-                    let w: f64 = v.weights().iter().map(|w| w.abs()).sum();
-                    w + norm(v.linear())
+                    let w: f64 = v.direct().weights().iter().map(|w| w.abs()).sum();
+                    w + norm(v.direct().linear())
                 }
             })
             .collect();
@@ -321,7 +323,8 @@ impl<'s, 'm> Tracer<'s, 'm> {
             values[m] = vec![0.0; points.len()];
             gradients[m] = vec![[0.0; 3]; points.len()];
             // Equal lengths by construction.
-            let _ = self.views[m].values_and_gradients(points, &mut values[m], &mut gradients[m]);
+            let _ =
+                self.views[m].field_values_and_gradients(points, &mut values[m], &mut gradients[m]);
         }
         let mut here = vec![0.0; models];
         (0..points.len())
@@ -452,12 +455,15 @@ impl<'s, 'm> Tracer<'s, 'm> {
                 values[m].resize(points.len(), 0.0);
                 if self.spread[m].is_none() {
                     // Steps need no gradient here: values alone are about twice as fast.
-                    let _ = self.views[m].values(&points, &mut values[m]);
+                    let _ = self.views[m].field_values(&points, &mut values[m]);
                     continue;
                 }
                 gradients[m].resize(points.len(), [0.0; 3]);
-                let _ =
-                    self.views[m].values_and_gradients(&points, &mut values[m], &mut gradients[m]);
+                let _ = self.views[m].field_values_and_gradients(
+                    &points,
+                    &mut values[m],
+                    &mut gradients[m],
+                );
                 if let Some(spread) = &self.spread[m] {
                     spreads[m].resize(points.len(), 0.0);
                     let _ = spread.view().values(&points, &mut spreads[m]);
@@ -516,7 +522,10 @@ impl<'s, 'm> Tracer<'s, 'm> {
         let (mut best, mut best_value) = (t, f.abs());
         let mut t = t;
         for _ in 0..4 {
-            let (v, g) = self.views[model].value_and_gradient(&along(ray.origin, ray.direction, t));
+            let (v, g) =
+                self.views[model]
+                    .direct()
+                    .value_and_gradient(&along(ray.origin, ray.direction, t));
             let (v, rate) = (sign * v, sign * dot(g, ray.direction));
             if v.abs() <= best_value {
                 (best, best_value) = (t, v.abs());

@@ -1,7 +1,7 @@
 //! Continuation (Bloomenthal 1988): start at cells near points on the surface and crawl across
 //! the lattice through faces the surface crosses, evaluating f only near the surface.
 
-use rbf_core::InterpolantView;
+use rbf_core::ScalarField;
 
 use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
 use crate::hash::{FastMap, FastSet};
@@ -19,7 +19,7 @@ const FACES: [([i64; 3], [u8; 4]); 6] = [
 /// Crossed edges and triangles of the cells reachable from the seeds, and how many lattice
 /// points were evaluated.
 pub(crate) fn cells(
-    f: &InterpolantView<'_, f64, 3>,
+    f: &dyn ScalarField<3>,
     lattice: &Lattice,
     seeds: &[[f64; 3]],
 ) -> (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize) {
@@ -56,7 +56,7 @@ pub(crate) fn cells(
         let points: Vec<[f64; 3]> = needed.iter().map(|&p| lattice.point(p)).collect();
         let mut found = vec![0.0; points.len()];
         // Equal lengths by construction.
-        let _ = f.par_values(&points, &mut found);
+        let _ = f.field_values(&points, &mut found);
         for (p, v) in needed.into_iter().zip(found) {
             values.insert(p, v);
         }

@@ -3,7 +3,7 @@
 //! cross are sampled in full.
 
 use rayon::prelude::*;
-use rbf_core::InterpolantView;
+use rbf_core::ScalarField;
 
 use super::BlockSkip;
 use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
@@ -16,7 +16,7 @@ type BlockResult = (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize);
 
 /// Crossed edges, triangles, lattice points sampled and blocks skipped.
 pub(crate) fn cells(
-    f: &InterpolantView<'_, f64, 3>,
+    f: &dyn ScalarField<3>,
     lattice: &Lattice,
     skip: BlockSkip,
 ) -> (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize, usize) {
@@ -40,7 +40,7 @@ pub(crate) fn cells(
     let mut values = vec![0.0; count];
     let mut gradients = vec![[0.0; 3]; count];
     // Equal lengths by construction.
-    let _ = f.par_values_and_gradients(&points, &mut values, &mut gradients);
+    let _ = f.field_values_and_gradients(&points, &mut values, &mut gradients);
     let coarse = |i: [i64; 3]| (i[0] + coarse_n[0] * (i[1] + coarse_n[1] * i[2])) as usize;
 
     let total = (blocks[0] * blocks[1] * blocks[2]) as usize;
@@ -68,7 +68,7 @@ pub(crate) fn cells(
                 BlockSkip::Never => false,
                 BlockSkip::Proven => {
                     let centre = core::array::from_fn(|d| 0.5 * (a[d] + c[d]));
-                    f.ball_bound(&centre, half_diagonal).one_sign()
+                    f.direct().ball_bound(&centre, half_diagonal).one_sign()
                 }
                 BlockSkip::Estimated => {
                     // Every point of the block is within half a diagonal of a corner.
@@ -109,7 +109,7 @@ pub(crate) fn cells(
 
 /// Samples a block's lattice points and polygonizes its cells; returns the samples taken.
 fn block_cells(
-    f: &InterpolantView<'_, f64, 3>,
+    f: &dyn ScalarField<3>,
     lattice: &Lattice,
     lo: [i64; 3],
     n: [i64; 3],
@@ -126,7 +126,7 @@ fn block_cells(
         }
     }
     let mut values = vec![0.0; points.len()];
-    let _ = f.values(&points, &mut values);
+    let _ = f.field_values(&points, &mut values);
     let at = |i: i64, j: i64, k: i64| values[(i + m[0] * (j + m[1] * k)) as usize];
     for k in 0..n[2] {
         for j in 0..n[1] {

@@ -15,7 +15,7 @@ mod lattice;
 mod roots;
 mod simplify;
 
-use rbf_core::{ConstraintKind, InterpolantView, Model};
+use rbf_core::{ConstraintKind, Model, ScalarField};
 
 use crate::{MeshError, TriMesh};
 use lattice::{Lattice, MAX_CELLS};
@@ -96,10 +96,10 @@ pub struct PolygonizeStats {
 }
 
 impl PolygonizeSettings {
-    fn lattice(&self, f: &InterpolantView<'_, f64, 3>) -> Result<Lattice, MeshError> {
+    fn lattice(&self, f: &dyn ScalarField<3>) -> Result<Lattice, MeshError> {
         let (lo, hi) = match self.bounds {
             Some(b) => b,
-            None => f.surface_box(self.margin),
+            None => f.direct().surface_box(self.margin),
         };
         let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
         if !(side > 0.0 && side.is_finite()) || lo.iter().chain(&hi).any(|v| !v.is_finite()) {
@@ -146,7 +146,7 @@ impl PolygonizeSettings {
 /// assert!(r.is_watertight() && r.genus == Some(0) && r.volume > 0.0);
 /// ```
 pub fn polygonize_grid(
-    f: &InterpolantView<'_, f64, 3>,
+    f: &dyn ScalarField<3>,
     settings: &PolygonizeSettings,
 ) -> Result<(TriMesh, PolygonizeStats), MeshError> {
     let lattice = settings.lattice(f)?;
@@ -170,7 +170,7 @@ pub fn polygonize_grid(
 /// Polygonizes the components of f's zero set reached from `seeds` (points on or near the
 /// surface) by continuation, evaluating f only near the surface.
 pub fn polygonize_continuation(
-    f: &InterpolantView<'_, f64, 3>,
+    f: &dyn ScalarField<3>,
     seeds: &[[f64; 3]],
     settings: &PolygonizeSettings,
 ) -> Result<(TriMesh, PolygonizeStats), MeshError> {

@@ -2,7 +2,7 @@
 //! iteration along each edge, normals from the gradient of f.
 
 use rayon::prelude::*;
-use rbf_core::InterpolantView;
+use rbf_core::ScalarField;
 
 use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, edge_of};
 use super::simplify;
@@ -36,7 +36,7 @@ struct Search {
 /// 1e-4 of its length (either way the vertex is within about 1e-8 of an edge length of the
 /// surface), after at most `iterations` rounds.
 pub(crate) fn assemble(
-    f: &InterpolantView<'_, f64, 3>,
+    f: &dyn ScalarField<3>,
     lattice: &Lattice,
     edges: Vec<CrossedEdge>,
     triangles: Vec<EdgeTriangle>,
@@ -117,7 +117,7 @@ pub(crate) fn assemble(
         let mut values = vec![0.0; points.len()];
         let mut gradients = vec![[0.0; 3]; points.len()];
         // Equal lengths by construction.
-        let _ = f.par_values_and_gradients(&points, &mut values, &mut gradients);
+        let _ = f.field_values_and_gradients(&points, &mut values, &mut gradients);
         let last = round + 1 == iterations.max(1);
         let mut still = Vec::with_capacity(pending.len());
         for ((&i, &v), &g) in pending.iter().zip(&values).zip(&gradients) {

@@ -34,6 +34,10 @@ pub struct IterativeOptions {
     /// Rows from which the products go through the far field (rbf-far) instead of direct sums;
     /// 200 000 by default, where it starts to pay on a 2-core machine.
     pub far_field_rows: usize,
+    /// Accept a solve that stalls above `FitSettings::max_residual` but within the rounding
+    /// floor of its products (see [`IterativeProgress::RoundingFloor`]); on by default, off
+    /// where the caller asked for that limit explicitly.
+    pub accept_rounding_floor: bool,
     /// Return a fit that did not reach the tolerance in `max_iterations` (its report says how
     /// far it got) instead of [`FitError::NotConverged`], whatever its residual.
     pub allow_unconverged: bool,
@@ -47,6 +51,7 @@ impl Default for IterativeOptions {
             restart: 40,
             schwarz: SchwarzSettings::default(),
             far_field_rows: FAR_FIELD_ROWS,
+            accept_rounding_floor: true,
             allow_unconverged: false,
         }
     }
@@ -66,6 +71,15 @@ pub enum IterativeProgress {
     /// A check found the far field less accurate at sampled rows than it claimed: the products
     /// are direct sums from here on.
     DirectSums,
+    /// The solve stalled above `FitSettings::max_residual` but within what double precision
+    /// allows for products of its weights (`floor`, relative to max|hᵢ|: 8ε · max over sampled
+    /// rows of Σⱼ|wⱼ|φ(|cᵢ − cⱼ|)); the fit is accepted with this residual.
+    RoundingFloor {
+        /// The residual reached.
+        residual: f64,
+        /// The rounding floor.
+        floor: f64,
+    },
     /// After an iteration: its number and the recurrence's estimate of the relative residual
     /// (2-norm of the residual over max|hᵢ|).
     Iteration {
@@ -138,6 +152,7 @@ pub fn solve_iterative<const D: usize>(
     let mut last = f64::INFINITY;
     // The residual last halved at this iteration.
     let (mut best, mut improved_at, mut checks_since) = (f64::INFINITY, 0, 0);
+    let mut stalled = false;
     let mut accept = |x: &[f64], r: &[f64], iteration: usize| {
         let rh = r[..k].iter().fold(0.0_f64, |a, v| a.max(v.abs()));
         let rg = r[k..].iter().fold(0.0_f64, |a, v| a.max(v.abs()));
@@ -168,6 +183,7 @@ pub fn solve_iterative<const D: usize>(
         } else if checks_since >= 3 && iteration >= improved_at + STALL {
             // The largest residuals stopped falling while the 2-norm kept falling: what is
             // left sits on a few rows that more iterations do not reach.
+            stalled = true;
             Acceptance::GiveUp
         } else {
             // GMRES watches the 2-norm; ask for the next check where the 2-norm would put
@@ -191,7 +207,21 @@ pub fn solve_iterative<const D: usize>(
     let end = fgmres(&b, &limits, &apply, &precondition, &mut accept, &mut report);
     // Stopped short of the tolerance (a tenth of the limit by default) but within the limit:
     // as good as a dense solve would have been allowed to be.
-    let good_enough = last <= settings.max_residual;
+    let mut good_enough = last <= settings.max_residual;
+    let mut limit = settings.max_residual;
+    if !end.converged && !good_enough && stalled && options.accept_rounding_floor {
+        // Stalled above the limit: if that is where double precision leaves products of these
+        // weights, no solver does better; accept, and say so.
+        let floor = rounding_floor(system, &end.x[..k]) / hmax;
+        if last <= floor {
+            (progress.borrow_mut())(IterativeProgress::RoundingFloor {
+                residual: last,
+                floor,
+            });
+            good_enough = true;
+            limit = floor;
+        }
+    }
     if !end.converged && !good_enough && !options.allow_unconverged {
         return Err(FitError::NotConverged {
             iterations: end.iterations,
@@ -203,11 +233,15 @@ pub fn solve_iterative<const D: usize>(
         max_residual: f64::INFINITY,
         ..*settings
     };
+    let accepted = FitSettings {
+        max_residual: limit,
+        ..*settings
+    };
     // The last check measured the returned iterate: by compensated direct sums, or by the far
     // field and direct sums at sampled rows.
     system.accept_measured(
         if end.converged || good_enough {
-            settings
+            &accepted
         } else {
             &relaxed
         },
@@ -221,6 +255,28 @@ pub fn solve_iterative<const D: usize>(
         },
         |_| last,
     )
+}
+
+/// 8ε · max over 2000 sampled rows of Σⱼ|wⱼ|φ(|cᵢ − cⱼ|) (normalized): how far rounding alone
+/// leaves a product of these weights from the truth, and so the lowest residual any solver
+/// working in double precision can certify.
+fn rounding_floor<const D: usize>(system: &System<D>, weights: &[f64]) -> f64 {
+    let points = system.normalized_points();
+    let magnitudes: Vec<f64> = weights.iter().map(|w| w.abs()).collect();
+    let rows: Vec<[f64; D]> = (0..2000.min(points.len()))
+        .map(|i| points[i * points.len() / 2000.min(points.len())])
+        .collect();
+    let mut sums = vec![0.0; rows.len()];
+    let evaluated =
+        rbf_core::InterpolantView::new(system.kernel(), points, &magnitudes, 0.0, [0.0; D])
+            .and_then(|f| f.par_values(&rows, &mut sums));
+    if evaluated.is_err() {
+        return 0.0;
+    }
+    // Exact for r³ and r (φ ≥ 0); for r² log r the magnitudes' sum may cancel, which only
+    // lowers the floor and makes acceptance stricter.
+    let worst = sums.iter().fold(0.0_f64, |a, s| a.max(s.abs()));
+    8.0 * f64::EPSILON * worst
 }
 
 /// Refuses an iterative solve of `rows` rows in `dim` dimensions whose factored subdomains and

@@ -246,3 +246,43 @@ fn far_field_products_reach_the_tolerance_at_every_row() {
         fit.report.residual
     );
 }
+
+/// A limit below what double precision allows: the solve stalls at the rounding floor of its
+/// products; by default it is accepted there (and says so), and the floor it claims holds at
+/// every row; a caller who insists on the limit gets the error.
+#[test]
+fn a_stall_at_the_rounding_floor_is_accepted_and_said_unless_the_limit_is_insisted_on() {
+    let cs = bumpy(3000, 5);
+    let settings = FitSettings {
+        max_residual: 1e-15,
+        ..FitSettings::default()
+    };
+    let system = System::new(&cs, &settings).unwrap();
+    let mut floors = Vec::new();
+    let fit = solve_iterative(&system, &settings, &IterativeOptions::default(), |p| {
+        if let IterativeProgress::RoundingFloor { residual, floor } = p {
+            floors.push((residual, floor));
+        }
+    })
+    .unwrap();
+    assert_eq!(floors.len(), 1, "the stall was reported once");
+    let (residual, floor) = floors[0];
+    assert!(residual <= floor && floor < 1e-6, "{residual:e} {floor:e}");
+    let measured = system.relative_residual(&fit.interpolant);
+    assert!(
+        measured <= floor,
+        "measured {measured:e} above the floor {floor:e}"
+    );
+    assert!(
+        measured > 1e-15,
+        "the limit was indeed out of reach ({measured:e})"
+    );
+    let insist = IterativeOptions {
+        accept_rounding_floor: false,
+        ..IterativeOptions::default()
+    };
+    assert!(matches!(
+        solve_iterative(&system, &settings, &insist, |_| {}),
+        Err(FitError::NotConverged { .. })
+    ));
+}
