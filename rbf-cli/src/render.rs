@@ -219,6 +219,9 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
         spinner.finish_and_clear();
         let (image, stats) = rendered.map_err(bad)?;
         if verbose {
+            for (input, view) in args.inputs.iter().zip(&views) {
+                eprintln!("{}: {}", input.display(), view.method());
+            }
             eprintln!(
                 "traced {} rays, {} evaluations of f ({:.2} s bounds and samples, {:.2} s tracing; {})",
                 stats.rays,

@@ -27,6 +27,21 @@ pub enum Method {
     },
 }
 
+impl core::fmt::Display for Method {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Method::Direct => write!(f, "direct sums"),
+            Method::FarField {
+                order,
+                sampled_error,
+            } => write!(
+                f,
+                "far field of order {order} (largest error at the sampled points {sampled_error:.1e})"
+            ),
+        }
+    }
+}
+
 /// f and ∇f of a model at many points, within an absolute accuracy.
 ///
 /// ```
