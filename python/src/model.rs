@@ -3,6 +3,7 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rbf_core::{AnyModel, FitReport, Kernel, Model as CoreModel};
+use rbf_far::Evaluator;
 use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_continuation, polygonize_grid};
 use rbf_render::{Camera, Csg, Object, RenderSettings, render, surface_bounds};
 
@@ -68,15 +69,17 @@ fn evaluate<const D: usize>(
     gradient: bool,
 ) -> PyResult<(Vec<f64>, usize)> {
     let points = x.points::<D>("x")?;
-    let f = m.interpolant.view();
+    let view = m.interpolant.view();
     let out = py.detach(|| {
+        // Large models through the far field, within 1e-6 of the centres' diagonal.
+        let f = Evaluator::with_default_accuracy(view, &points);
         let mut values = vec![0.0; points.len()];
         if !gradient {
-            let _ = f.par_values(&points, &mut values);
+            let _ = f.values(&points, &mut values);
             return values;
         }
         let mut grads = vec![[0.0; D]; points.len()];
-        let _ = f.par_values_and_gradients(&points, &mut values, &mut grads);
+        let _ = f.values_and_gradients(&points, &mut values, &mut grads);
         grads.into_flattened()
     });
     Ok((out, points.len()))
@@ -247,8 +250,9 @@ impl Model {
             resolution: Resolution::Cells(resolution),
             ..Default::default()
         };
-        let f = model.interpolant.view();
+        let view = model.interpolant.view();
         let result = py.detach(|| {
+            let f = Evaluator::with_default_accuracy(view, view.centres());
             if grid {
                 polygonize_grid(&f, &settings)
             } else {
@@ -291,10 +295,11 @@ impl Model {
             ground,
             ..Default::default()
         };
-        let views = [model.interpolant.view()];
+        let view = model.interpolant.view();
         let objects = [Object::new(Csg::Model(0), 0)];
         let image = py
             .detach(|| {
+                let views = [Evaluator::with_default_accuracy(view, view.centres())];
                 let (lo, hi) = surface_bounds(&views, &objects, &settings)?;
                 let camera = Camera::orbit(lo, hi, azimuth, elevation, width, height);
                 render(&views, &objects, &camera, &settings).map(|(image, _)| image)

@@ -39,15 +39,8 @@ impl AccuracyArgs {
                     format!("--accuracy {a}: the accuracy must be a finite number > 0"),
                 ));
             }
-            None => 1e-6 * diagonal(view.centres()),
+            None => rbf_far::default_accuracy(view.centres()),
         };
         Ok(Evaluator::new(view, sample, accuracy))
     }
-}
-
-/// The diagonal of the points' bounding box (1 if there are none, or all coincide).
-fn diagonal<const D: usize>(points: &[[f64; D]]) -> f64 {
-    let (lo, hi) = rbf_far::bounds(points, &(0..points.len()).collect::<Vec<_>>());
-    let d = (0..D).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt();
-    if d > 0.0 && d.is_finite() { d } else { 1.0 }
 }

@@ -100,6 +100,12 @@ impl<'a, const D: usize> Evaluator<'a, D> {
         }
     }
 
+    /// [`Evaluator::new`] at the default accuracy, 1e-6 of the diagonal of the centres'
+    /// bounding box (what `rbf eval`, `rbf mesh`, `rbf render` and rbfsurf use unless told).
+    pub fn with_default_accuracy(view: InterpolantView<'a, f64, D>, points: &[[f64; D]]) -> Self {
+        Self::new(view, points, default_accuracy(view.centres()))
+    }
+
     /// Direct sums over every centre.
     pub fn direct(view: InterpolantView<'a, f64, D>) -> Self {
         Self {
@@ -173,6 +179,17 @@ impl<'a, const D: usize> Evaluator<'a, D> {
         let linear = self.view.linear();
         self.view.constant() + (0..D).map(|d| linear[d] * p[d]).sum::<f64>()
     }
+}
+
+/// 1e-6 of the diagonal of the points' bounding box (1e-6 if there are none, or all coincide).
+///
+/// ```
+/// assert!((rbf_far::default_accuracy(&[[0.0, 0.0], [3.0, 4.0]]) - 5e-6).abs() < 1e-20);
+/// ```
+pub fn default_accuracy<const D: usize>(centres: &[[f64; D]]) -> f64 {
+    let (lo, hi) = crate::tree::bounds(centres, &(0..centres.len()).collect::<Vec<_>>());
+    let d = (0..D).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt();
+    1e-6 * if d > 0.0 && d.is_finite() { d } else { 1.0 }
 }
 
 impl<const D: usize> ScalarField<D> for Evaluator<'_, D> {

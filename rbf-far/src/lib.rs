@@ -14,7 +14,7 @@ mod field;
 mod settings;
 mod tree;
 
-pub use evaluator::{Evaluator, FAR_FIELD_CENTRES, Method};
+pub use evaluator::{Evaluator, FAR_FIELD_CENTRES, Method, default_accuracy};
 pub use field::{Charges, FarField, calibrated};
 pub use settings::FarFieldSettings;
 pub use tree::{Node, Tree, bounds, box_gap2, point_gap2};
