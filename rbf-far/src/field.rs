@@ -216,12 +216,11 @@ impl<const D: usize> FarField<D> {
                     .iter()
                     .map(|&i| targets[i])
                     .collect();
-                let (c, w) = self.interactions(charges, &node.lo, &node.hi);
                 let mut v = vec![0.0; points.len()];
                 let mut g = vec![[0.0; D]; points.len()];
-                InterpolantView::new(self.kernel, &c, &w, 0.0, [0.0; D])
-                    .and_then(|f| f.values_and_gradients(&points, &mut v, &mut g))
-                    .expect("matching lengths");
+                self.leaf_values_and_gradients(
+                    charges, &node.lo, &node.hi, &points, &mut v, &mut g,
+                );
                 (leaf, v, g)
             })
             .collect();
@@ -263,43 +262,87 @@ impl<const D: usize> FarField<D> {
         points: &[[f64; D]],
         out: &mut [f64],
     ) {
-        let (c, w) = self.interactions(charges, lo, hi);
-        InterpolantView::new(self.kernel, &c, &w, 0.0, [0.0; D])
-            .and_then(|f| f.values(points, out))
-            .expect("matching lengths");
+        out.fill(0.0);
+        let mut part = vec![0.0; points.len()];
+        for (c, w) in self.interactions(charges, lo, hi) {
+            InterpolantView::new(self.kernel, c, w, 0.0, [0.0; D])
+                .and_then(|f| f.values(points, &mut part))
+                .expect("matching lengths");
+            for (o, p) in out.iter_mut().zip(&part) {
+                *o += p;
+            }
+        }
     }
 
-    /// What targets in the box [lo, hi] see: the centres of every cluster too close to it, and
-    /// the proxies of every cluster far enough (its longest side at most θ times its distance
-    /// to the box), each with its weight or charge.
-    fn interactions(
+    fn leaf_values_and_gradients(
         &self,
         charges: &Charges,
         lo: &[f64; D],
         hi: &[f64; D],
-    ) -> (Vec<[f64; D]>, Vec<f64>) {
+        points: &[[f64; D]],
+        values: &mut [f64],
+        gradients: &mut [[f64; D]],
+    ) {
+        values.fill(0.0);
+        gradients.fill([0.0; D]);
+        let (mut v, mut g) = (vec![0.0; points.len()], vec![[0.0; D]; points.len()]);
+        for (c, w) in self.interactions(charges, lo, hi) {
+            InterpolantView::new(self.kernel, c, w, 0.0, [0.0; D])
+                .and_then(|f| f.values_and_gradients(points, &mut v, &mut g))
+                .expect("matching lengths");
+            for (o, p) in values.iter_mut().zip(&v) {
+                *o += p;
+            }
+            for (o, p) in gradients.iter_mut().zip(&g) {
+                for d in 0..D {
+                    o[d] += p[d];
+                }
+            }
+        }
+    }
+
+    /// What targets in the box [lo, hi] see, as slices of centres (or proxies) with their
+    /// weights (or charges): the centres of every cluster too close to the box, and the proxies
+    /// of every cluster far enough (its longest side at most θ times its distance to the box).
+    /// Neighbouring runs of centres are merged, so the slices are long and nothing is copied.
+    fn interactions<'s>(
+        &'s self,
+        charges: &'s Charges,
+        lo: &[f64; D],
+        hi: &[f64; D],
+    ) -> Vec<(&'s [[f64; D]], &'s [f64])> {
         let theta2 = self.settings.theta * self.settings.theta;
-        let (mut c, mut w) = (Vec::new(), Vec::new());
+        let mut near: Vec<(usize, usize)> = Vec::new();
+        let mut far = Vec::new();
         let mut stack = vec![0];
         while let Some(n) = stack.pop() {
             let node = &self.tree.nodes[n];
-            if self.grids[n].is_none() {
-                c.extend_from_slice(&self.centres[node.start..node.end]);
-                w.extend_from_slice(&charges.weights[node.start..node.end]);
-                continue;
-            }
-            let side = side(&node.lo, &node.hi);
-            if side * side <= theta2 * box_gap2(&node.lo, &node.hi, lo, hi) {
-                c.extend_from_slice(&self.proxies[n]);
-                w.extend_from_slice(&charges.proxy[n]);
-            } else if let Some((a, b)) = node.children {
-                stack.extend([a, b]);
-            } else {
-                c.extend_from_slice(&self.centres[node.start..node.end]);
-                w.extend_from_slice(&charges.weights[node.start..node.end]);
+            let direct = match (&self.grids[n], node.children) {
+                (None, _) => true,
+                _ if side(&node.lo, &node.hi).powi(2)
+                    <= theta2 * box_gap2(&node.lo, &node.hi, lo, hi) =>
+                {
+                    far.push((self.proxies[n].as_slice(), charges.proxy[n].as_slice()));
+                    false
+                }
+                (Some(_), Some((a, b))) => {
+                    // Left child first: runs of centres come out in order and merge.
+                    stack.extend([b, a]);
+                    false
+                }
+                (Some(_), None) => true,
+            };
+            if direct {
+                match near.last_mut() {
+                    Some(run) if run.1 == node.start => run.1 = node.end,
+                    _ => near.push((node.start, node.end)),
+                }
             }
         }
-        (c, w)
+        near.into_iter()
+            .map(|(a, b)| (&self.centres[a..b], &charges.weights[a..b]))
+            .chain(far)
+            .collect()
     }
 }
 

@@ -31,7 +31,7 @@ impl Default for FarFieldSettings {
             order: 8,
             theta: 0.5,
             leaf: 64,
-            target_leaf: 64,
+            target_leaf: 512,
         }
     }
 }

@@ -153,18 +153,30 @@ fn far_field_is_exact_for_clusters_it_never_approximates() {
     }
 }
 
+/// The product at the centres (targets grouped by the field's own leaves, as the solver takes
+/// it) is as accurate as evaluation at any points: within 1e-9 of Σ|wⱼ|φ at order 12.
 #[test]
-fn self_values_are_values_at_the_centres() {
+fn self_values_match_direct_sums_at_the_centres() {
     let centres = cloud(Cloud::Anisotropic, 5000, 9);
     let w = weights(5000, 9);
-    let field = FarField::new(Kernel::Cubic, &centres, &FarFieldSettings::default());
-    let charges = field.charges(&w);
-    let (mut a, mut b) = (vec![0.0; 5000], vec![0.0; 5000]);
-    field.self_values(&charges, &mut a);
-    field.values(&charges, &centres, &mut b);
-    for (x, y) in a.iter().zip(&b) {
-        let m = x.abs().max(1.0);
-        assert!((x - y).abs() <= 1e-9 * m * 5000.0, "{x} {y}");
+    let settings = FarFieldSettings {
+        order: 12,
+        ..FarFieldSettings::default()
+    };
+    let field = FarField::new(Kernel::Cubic, &centres, &settings);
+    let mut far = vec![0.0; 5000];
+    field.self_values(&field.charges(&w), &mut far);
+    let direct = InterpolantView::new(Kernel::Cubic, &centres, &w, 0.0, [0.0; 3]).unwrap();
+    let mut exact = vec![0.0; 5000];
+    direct.values(&centres, &mut exact).unwrap();
+    for (i, c) in centres.iter().enumerate().step_by(13) {
+        let m = magnitude(Kernel::Cubic, &centres, &w, c);
+        assert!(
+            (far[i] - exact[i]).abs() <= 1e-9 * m,
+            "{} {}",
+            far[i],
+            exact[i]
+        );
     }
 }
 
