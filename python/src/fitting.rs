@@ -1,8 +1,8 @@
 //! Fits: constraints of every kind, given as arrays, to a `Model`.
 
 use pyo3::prelude::*;
-use rbf_core::{Constraint, FitSettings, Kernel, Model as CoreModel, NormalOffset, System};
-use rbf_solve::{IterativeOptions, SolveOptions};
+use rbf_core::{Constraint, FitSettings, Kernel, Model as CoreModel, NormalOffset};
+use rbf_solve::{FitOptions, IterativeOptions};
 
 use crate::arrays::{Floats, point_dimension};
 use crate::error::bad;
@@ -100,22 +100,19 @@ where
         };
         constraints.push(c.with_smoothing(smoothing[i]));
     }
-    let fit = py.detach(|| match method {
-        Method::Auto => rbf_solve::fit(&constraints, &settings),
-        Method::Dense => {
-            rbf_solve::check_constraints_fit(&constraints)?;
-            let system = System::new(&constraints, &settings)?;
-            rbf_solve::solve(&system, &settings, &SolveOptions::default())
-        }
-        Method::Fast => {
-            let system = System::new(&constraints, &settings)?;
-            let options = IterativeOptions {
-                allow_unconverged,
-                ..Default::default()
-            };
-            rbf_solve::solve_iterative(&system, &settings, &options, |_| {})
-        }
-    });
+    let options = FitOptions {
+        method: match method {
+            Method::Auto => rbf_solve::Method::Auto,
+            Method::Dense => rbf_solve::Method::Dense,
+            Method::Fast => rbf_solve::Method::Iterative,
+        },
+        iterative: IterativeOptions {
+            allow_unconverged,
+            ..Default::default()
+        },
+        ..FitOptions::default()
+    };
+    let fit = py.detach(|| rbf_solve::fit_with(&constraints, &settings, &options, |_| {}));
     let fit = fit.map_err(bad)?;
     Ok(Model::new(CoreModel {
         constraints,

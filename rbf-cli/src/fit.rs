@@ -5,9 +5,12 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use rbf_core::{
-    AnyModel, Constraint, ConstraintFile, FitSettings, Model, NormalOffset, SolveMethod, System,
+    AnyModel, Constraint, ConstraintFile, FitSettings, Model, NormalOffset, SolveMethod,
 };
-use rbf_solve::{GreedySettings, IterativeOptions, IterativeProgress, SolveOptions, Strategy};
+use rbf_solve::{
+    FitOptions, FitProgress, GreedySettings, IterativeOptions, IterativeProgress, Method,
+    SolveOptions, Strategy,
+};
 
 use crate::KernelArg;
 use crate::common::{read_text, spinner, write_atomically};
@@ -47,7 +50,7 @@ Methods (--method):
   fast     flexible GMRES preconditioned by overlapping subdomains and a coarse level (Beatson,
            Light & Billings 2000): O(K) memory; stops when max|f(cᵢ) − hᵢ| ≤ max|hᵢ| ×
            --max-residual / 10, or fails (--allow-unconverged keeps the model with a warning);
-           from 200 000 rows its products go through a far field whose claimed residual is
+           from 400 000 rows its products go through a far field whose claimed residual is
            checked by direct sums at 2000 sampled rows
   greedy   a subset of the constraints (--tolerance, --max-centres)";
 
@@ -408,6 +411,18 @@ struct Job<'a> {
     greedy: GreedySettings,
 }
 
+/// ", about N s left": the iterations still needed if the residual keeps falling at its
+/// average rate so far, at the average time of an iteration so far (empty until it can tell).
+fn time_left(since: Instant, iteration: usize, estimate: f64, tolerance: f64) -> String {
+    let rate = estimate.ln() / iteration.max(1) as f64;
+    if !(rate < 0.0 && estimate > tolerance && iteration >= 2) {
+        return String::new();
+    }
+    let more = (tolerance / estimate).ln() / rate;
+    let seconds = since.elapsed().as_secs_f64() / iteration as f64 * more;
+    format!(", about {seconds:.0} s left")
+}
+
 impl Job<'_> {
     fn run<const D: usize>(&self) -> Result<(), Failure> {
         let constraints: Vec<Constraint<D>> = match self.input {
@@ -424,55 +439,65 @@ impl Job<'_> {
         }
         let start = Instant::now();
         let rows: usize = constraints.iter().map(Constraint::rows).sum();
-        let dense = match self.method {
-            MethodArg::Auto => rows <= rbf_solve::DENSE_LIMIT,
-            m => m == MethodArg::Dense,
+        let options = FitOptions {
+            method: match self.method {
+                MethodArg::Dense => Method::Dense,
+                MethodArg::Fast => Method::Iterative,
+                _ => Method::Auto,
+            },
+            dense: self.options,
+            iterative: self.iterative,
         };
-        // Too many constraints for memory: say so before the checks, which take time too.
-        if dense {
-            rbf_solve::check_constraints_fit(&constraints)
-        } else {
-            rbf_solve::check_iterative_fits(rows, D, &self.iterative)
-        }
-        .map_err(|e| Failure::fit(self.source, &e))?;
+        let tolerance = self
+            .iterative
+            .tolerance
+            .unwrap_or(0.1 * self.settings.max_residual);
         let spinner = spinner(self.quiet, format!("checking {rows} rows"));
-        let system =
-            System::new(&constraints, &self.settings).map_err(|e| Failure::fit(self.source, &e))?;
         let rounding_floor = std::cell::Cell::new(None);
-        let fit = if dense {
-            spinner.set_message(format!("solving a dense system of {rows} rows"));
-            rbf_solve::solve(&system, &self.settings, &self.options)
-        } else {
-            rbf_solve::solve_iterative(&system, &self.settings, &self.iterative, |p| {
-                if let IterativeProgress::RoundingFloor { floor, .. } = p {
-                    rounding_floor.set(Some(floor));
+        let solving = std::cell::Cell::new(Instant::now());
+        let fit = rbf_solve::fit_with(&constraints, &self.settings, &options, |p| {
+            let p = match p {
+                FitProgress::Checking { rows } => {
+                    return spinner.set_message(format!("checking {rows} rows"));
                 }
-                spinner.set_message(match p {
-                    IterativeProgress::Preconditioning => {
-                        format!("{rows} rows: factoring the subdomains")
+                FitProgress::Factoring { rows } => {
+                    return spinner.set_message(format!("solving a dense system of {rows} rows"));
+                }
+                FitProgress::Iterative(p) => p,
+            };
+            if let IterativeProgress::RoundingFloor { floor, .. } = p {
+                rounding_floor.set(Some(floor));
+            }
+            spinner.set_message(match p {
+                IterativeProgress::Preconditioning => {
+                    format!("{rows} rows: factoring the subdomains")
+                }
+                IterativeProgress::FarField { order } => {
+                    solving.set(Instant::now());
+                    format!("{rows} rows: products through the far field (order {order})")
+                }
+                IterativeProgress::DirectSums => format!("{rows} rows: products by direct sums"),
+                IterativeProgress::RoundingFloor { residual, .. } => {
+                    format!("{rows} rows: stopped at residual {residual:.1e}, the rounding floor")
+                }
+                IterativeProgress::Iteration {
+                    iteration,
+                    estimate,
+                } => {
+                    let left = time_left(solving.get(), iteration, estimate, tolerance);
+                    format!("{rows} rows: iteration {iteration}, residual ≈ {estimate:.1e}{left}")
+                }
+                IterativeProgress::Checked {
+                    iteration,
+                    residual,
+                } => {
+                    if iteration == 0 {
+                        solving.set(Instant::now());
                     }
-                    IterativeProgress::FarField { order } => {
-                        format!("{rows} rows: products through the far field (order {order})")
-                    }
-                    IterativeProgress::DirectSums => {
-                        format!("{rows} rows: products by direct sums")
-                    }
-                    IterativeProgress::RoundingFloor { residual, .. } => {
-                        format!(
-                            "{rows} rows: stopped at residual {residual:.1e}, the rounding floor"
-                        )
-                    }
-                    IterativeProgress::Iteration {
-                        iteration,
-                        estimate,
-                    } => format!("{rows} rows: iteration {iteration}, residual ≈ {estimate:.1e}"),
-                    IterativeProgress::Checked {
-                        iteration,
-                        residual,
-                    } => format!("{rows} rows: iteration {iteration}, residual {residual:.1e}"),
-                })
+                    format!("{rows} rows: iteration {iteration}, residual {residual:.1e}")
+                }
             })
-        };
+        });
         spinner.finish_and_clear();
         let fit = fit.map_err(|e| Failure::fit(self.source, &e))?;
         let elapsed = start.elapsed();

@@ -7,7 +7,6 @@ use rbf_core::{
 };
 
 use crate::lu::FullLu;
-use crate::memory::check_constraints_fit;
 use crate::projected::{Attempt, Projected};
 
 /// Which factorization solves the system; [`Strategy::Auto`] falls back from the fastest.
@@ -75,14 +74,7 @@ pub fn fit<const D: usize>(
     constraints: &[Constraint<D>],
     settings: &FitSettings,
 ) -> Result<Fit<D>, FitError> {
-    let rows: usize = constraints.iter().map(Constraint::rows).sum();
-    if rows > DENSE_LIMIT {
-        let system = System::new(constraints, settings)?;
-        return crate::solve_iterative(&system, settings, &Default::default(), |_| {});
-    }
-    check_constraints_fit(constraints)?;
-    let system = System::new(constraints, settings)?;
-    solve(&system, settings, &SolveOptions::default())
+    crate::fit_with(constraints, settings, &crate::FitOptions::default(), |_| {})
 }
 
 /// Solves a checked system (see [`fit`]) with the given options.

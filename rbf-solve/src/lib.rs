@@ -33,6 +33,7 @@
 //! assert!(fit.interpolant.value(&[0.0; 3]) > 0.0);
 //! ```
 
+mod dispatch;
 mod fast;
 mod fit;
 mod greedy;
@@ -42,6 +43,7 @@ mod memory;
 mod probe;
 mod projected;
 
+pub use dispatch::{FitOptions, FitProgress, Method, fit_with};
 pub use fast::{
     IterativeOptions, IterativeProgress, SchwarzSettings, check_iterative_fits, solve_iterative,
 };

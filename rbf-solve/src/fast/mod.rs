@@ -3,6 +3,7 @@
 //! core. Memory grows linearly with the rows; convergence is judged by the true residual.
 
 mod gmres;
+mod packed_lu;
 mod products;
 mod schwarz;
 
@@ -32,7 +33,7 @@ pub struct IterativeOptions {
     /// The preconditioner's subdomain and coarse-level sizes.
     pub schwarz: SchwarzSettings,
     /// Rows from which the products go through the far field (rbf-far) instead of direct sums;
-    /// 200 000 by default, where it starts to pay on a 2-core machine.
+    /// 400 000 by default (below, direct products are about as fast and GMRES needs fewer).
     pub far_field_rows: usize,
     /// Accept a solve that stalls above `FitSettings::max_residual` but within the rounding
     /// floor of its products (see [`IterativeProgress::RoundingFloor`]); on by default, off
@@ -285,7 +286,7 @@ fn rounding_floor<const D: usize>(system: &System<D>, weights: &[f64]) -> f64 {
 ///
 /// ```
 /// use rbf_solve::{IterativeOptions, check_iterative_fits};
-/// assert!(check_iterative_fits(100_000, 3, &IterativeOptions::default()).is_ok()); // 3 GB
+/// assert!(check_iterative_fits(100_000, 3, &IterativeOptions::default()).is_ok()); // 1.3 GB
 /// assert!(check_iterative_fits(1 << 40, 3, &IterativeOptions::default()).is_err());
 /// ```
 #[doc(hidden)]
@@ -296,14 +297,16 @@ pub fn check_iterative_fits(
 ) -> Result<(), FitError> {
     let s = &options.schwarz;
     let ext = (s.extended.max(s.inner) + dim + 1) as u64;
-    let leaves = rows.div_ceil(s.inner.max(1)) as u64 * 2;
+    // Median splits halve a node until it holds at most `inner` rows: a power of two of leaves.
+    let leaves = rows.div_ceil(s.inner.max(1)).next_power_of_two() as u64;
     let coarse = (s.coarse.min(rows) + dim + 1) as u64;
-    // Each factored subdomain, and as much again for the allocator's slack and the matrices
-    // being factored (measured: 3.2 GB at 10⁵ rows with the default settings); the coarse
-    // level; two Krylov vectors per step of a restart cycle.
+    // Each factored subdomain (one packed LU) and a tenth more for the allocator and the
+    // matrices being factored (measured: 1.28 GB peak for the whole `rbf fit` at 10⁵ rows with
+    // the default settings, 1.27 GB by this estimate); the coarse level; two Krylov vectors per
+    // step of a restart cycle.
     let vectors = 2 * (options.restart as u64 + 2);
-    let numbers = leaves
-        .saturating_mul(2 * ext * ext)
+    let numbers = leaves.saturating_mul(ext * ext).saturating_mul(11) / 10;
+    let numbers = numbers
         .saturating_add(coarse * coarse)
         .saturating_add(vectors.saturating_mul((rows + dim + 1) as u64));
     let bytes = numbers.saturating_mul(8);

@@ -9,9 +9,11 @@ use rbf_core::{InterpolantView, System};
 use rbf_far::{FarField, calibrated};
 
 /// Rows from which the far field is tried by default. The solver's accuracy takes order 12 on
-/// the peers' surface problem; one product at order 12 takes 1.15 s at 10⁵ points (as long as
-/// compensated direct sums) and 3.2 s at 2·10⁵ (about 4.6 s direct), on a 2-core machine.
-pub(crate) const FAR_FIELD_ROWS: usize = 200_000;
+/// the peers' surface problem, where one far product costs about what compensated direct sums
+/// do up to 3·10⁵ rows (1.15 s at 10⁵, 3.2 s against 4.6 s at 2·10⁵, 8.9 s against 10 s at
+/// 3·10⁵), and GMRES needs more iterations with it (3·10⁵ rows: 25 iterations, 366 s, against
+/// 17 and 329 s by direct sums); at 10⁶ a direct product takes about two minutes.
+pub(crate) const FAR_FIELD_ROWS: usize = 400_000;
 
 /// Rows at which direct sums certify a residual: the worst of the fast residual, and as many
 /// spread over the rows.

@@ -9,8 +9,9 @@
 //! subset of the rows, with the whole affine part, solves what the fine level left behind there
 //! (multiplicative between the levels), and supplies the polynomial.
 
-use faer::Mat;
-use faer::linalg::solvers::{PartialPivLu, Solve};
+use faer::{Mat, Par};
+
+use super::packed_lu::PackedLu;
 use rayon::prelude::*;
 use rbf_core::{InterpolantView, System};
 
@@ -46,7 +47,7 @@ struct Local {
     poly: usize,
     /// Local weights times this are weights of the whole system.
     weight_scale: f64,
-    lu: PartialPivLu<f64>,
+    lu: PackedLu,
 }
 
 impl Local {
@@ -103,7 +104,14 @@ impl Local {
             (false, true) => basis[i - m][j],
             (false, false) => 0.0,
         });
-        let lu = PartialPivLu::new(matrix.as_ref());
+        // Subdomains (rescaled) are factored many at once, one per core; the coarse level alone,
+        // on every core.
+        let par = if rescale {
+            Par::Seq
+        } else {
+            faer::get_global_parallelism()
+        };
+        let lu = PackedLu::new(matrix, par);
         let local = Self {
             rows,
             keep,
@@ -256,7 +264,7 @@ fn empty_local<const D: usize>() -> Local {
         keep: 0,
         poly: 0,
         weight_scale: 1.0,
-        lu: PartialPivLu::new(Mat::<f64>::identity(1, 1).as_ref()),
+        lu: PackedLu::new(Mat::<f64>::identity(1, 1), Par::Seq),
     }
 }
 
