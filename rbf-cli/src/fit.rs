@@ -101,6 +101,10 @@ pub(crate) struct FitArgs {
     /// warning says how far it got) instead of failing; it must still meet --max-residual.
     #[arg(long)]
     allow_unconverged: bool,
+    /// With the fast method: take every product by direct sums, however many rows (by default
+    /// from 400 000 rows they go through a far field).
+    #[arg(long)]
+    exact: bool,
     /// With --method greedy: the largest miss allowed, |f − h| / |∇f| at every constraint, as a
     /// fraction of the bounding box's longest side [default: 1e-4].
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
@@ -245,6 +249,11 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
         iterative: IterativeOptions {
             max_iterations: args.max_iterations,
             allow_unconverged: args.allow_unconverged,
+            far_field_rows: if args.exact {
+                usize::MAX
+            } else {
+                IterativeOptions::default().far_field_rows
+            },
             // A limit the user set is kept: missing it is an error, not a note.
             accept_rounding_floor: args.max_residual.is_none(),
             ..Default::default()
@@ -411,11 +420,18 @@ struct Job<'a> {
     greedy: GreedySettings,
 }
 
-/// ", about N s left": the iterations still needed if the residual keeps falling at its
-/// average rate so far, at the average time of an iteration so far (empty until it can tell).
-fn time_left(since: Instant, iteration: usize, estimate: f64, tolerance: f64) -> String {
-    let rate = estimate.ln() / iteration.max(1) as f64;
-    if !(rate < 0.0 && estimate > tolerance && iteration >= 2) {
+/// ", about N s left": the iterations still needed if the residual keeps falling at its rate
+/// since the first iteration (`first`: that iteration's estimate), at the average time of an
+/// iteration so far; empty until it can tell.
+fn time_left(
+    since: Instant,
+    first: f64,
+    iteration: usize,
+    estimate: f64,
+    tolerance: f64,
+) -> String {
+    let rate = (estimate / first).ln() / (iteration as f64 - 1.0);
+    if !(iteration >= 3 && rate < 0.0 && estimate > tolerance) {
         return String::new();
     }
     let more = (tolerance / estimate).ln() / rate;
@@ -455,6 +471,7 @@ impl Job<'_> {
         let spinner = spinner(self.quiet, format!("checking {rows} rows"));
         let rounding_floor = std::cell::Cell::new(None);
         let solving = std::cell::Cell::new(Instant::now());
+        let first = std::cell::Cell::new(f64::NAN);
         let fit = rbf_solve::fit_with(&constraints, &self.settings, &options, |p| {
             let p = match p {
                 FitProgress::Checking { rows } => {
@@ -484,7 +501,11 @@ impl Job<'_> {
                     iteration,
                     estimate,
                 } => {
-                    let left = time_left(solving.get(), iteration, estimate, tolerance);
+                    if iteration == 1 {
+                        first.set(estimate);
+                    }
+                    let left =
+                        time_left(solving.get(), first.get(), iteration, estimate, tolerance);
                     format!("{rows} rows: iteration {iteration}, residual ≈ {estimate:.1e}{left}")
                 }
                 IterativeProgress::Checked {

@@ -1375,6 +1375,18 @@ fn large_fits_go_to_the_iterative_solver_which_says_when_it_stops_short() {
         stderr(&o)
     );
     assert!(model.exists());
+    // --exact (direct products whatever the size) is taken by the iterative method.
+    let (exact, o) = fit_file(
+        dir.path(),
+        "cloud.txt",
+        &points,
+        &["--method", "fast", "--exact"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&exact).unwrap()).unwrap();
+    assert_eq!(e["report"]["method"], "iterative");
+    assert!(e["report"]["residual"].as_f64().unwrap() <= 1e-7);
     // Options of other methods are refused.
     for bad in [
         &["--tolerance", "1e-3"][..],
