@@ -1,17 +1,21 @@
 //! Times one far-field product at the centres for N points on a bumpy sphere (random weights):
 //!
 //!     cargo run --release -p rbf-far --example scale -- N order theta
+use std::error::Error;
 use std::time::Instant;
 
 use rbf_core::Kernel;
 use rbf_far::{FarField, FarFieldSettings};
 
-fn main() {
+fn main() -> Result<(), Box<dyn Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let n: usize = args[0].parse().unwrap();
+    let [n, order, theta] = args.as_slice() else {
+        return Err("usage: scale N ORDER THETA".into());
+    };
+    let n: usize = n.parse()?;
     let settings = FarFieldSettings {
-        order: args[1].parse().unwrap(),
-        theta: args[2].parse().unwrap(),
+        order: order.parse()?,
+        theta: theta.parse()?,
         ..FarFieldSettings::default()
     };
     let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
@@ -29,13 +33,14 @@ fn main() {
         .collect();
     let t = Instant::now();
     let field = FarField::new(Kernel::Cubic, &centres, &settings);
-    let charges = field.charges(&weights);
+    let charges = field.charges(&weights)?;
     let setup = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let mut out = vec![0.0; n];
-    field.self_values(&charges, &mut out);
+    field.self_values(&charges, &mut out)?;
     println!(
         "N {n}: setup {setup:.2} s, product {:.2} s",
         t.elapsed().as_secs_f64()
     );
+    Ok(())
 }

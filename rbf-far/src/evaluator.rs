@@ -125,14 +125,7 @@ impl<'a, const D: usize> Evaluator<'a, D> {
         match &self.far {
             None => self.view.par_values(points, out),
             Some((field, charges)) => {
-                if out.len() != points.len() {
-                    return Err(LengthMismatch {
-                        what: "output",
-                        expected: points.len(),
-                        found: out.len(),
-                    });
-                }
-                field.values(charges, points, out);
+                field.values(charges, points, out)?;
                 for (o, p) in out.iter_mut().zip(points) {
                     *o += self.affine(p);
                 }
@@ -153,16 +146,7 @@ impl<'a, const D: usize> Evaluator<'a, D> {
                 .view
                 .par_values_and_gradients(points, values, gradients),
             Some((field, charges)) => {
-                for (what, found) in [("values", values.len()), ("gradients", gradients.len())] {
-                    if found != points.len() {
-                        return Err(LengthMismatch {
-                            what,
-                            expected: points.len(),
-                            found,
-                        });
-                    }
-                }
-                field.values_and_gradients(charges, points, values, gradients);
+                field.values_and_gradients(charges, points, values, gradients)?;
                 let linear = self.view.linear();
                 for ((v, g), p) in values.iter_mut().zip(gradients.iter_mut()).zip(points) {
                     *v += self.affine(p);
@@ -187,7 +171,12 @@ impl<'a, const D: usize> Evaluator<'a, D> {
 /// assert!((rbf_far::default_accuracy(&[[0.0, 0.0], [3.0, 4.0]]) - 5e-6).abs() < 1e-20);
 /// ```
 pub fn default_accuracy<const D: usize>(centres: &[[f64; D]]) -> f64 {
-    let (lo, hi) = crate::tree::bounds(centres, &(0..centres.len()).collect::<Vec<_>>());
+    let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
+    for c in centres {
+        for d in 0..D {
+            (lo[d], hi[d]) = (lo[d].min(c[d]), hi[d].max(c[d]));
+        }
+    }
     let d = (0..D).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt();
     1e-6 * if d > 0.0 && d.is_finite() { d } else { 1.0 }
 }

@@ -6,7 +6,7 @@
 //! vectorized evaluator in one pass.
 
 use rayon::prelude::*;
-use rbf_core::{InterpolantView, Kernel};
+use rbf_core::{InterpolantView, Kernel, LengthMismatch};
 
 use crate::chebyshev::Axis;
 use crate::settings::FarFieldSettings;
@@ -23,10 +23,11 @@ use crate::tree::{Tree, box_gap2};
 ///     .collect();
 /// let weights: Vec<f64> = (0..3000).map(|i| ((i * 37 % 101) as f64 - 50.0) / 50.0).collect();
 /// let field = FarField::new(Kernel::Cubic, &centres, &FarFieldSettings::default());
-/// let charges = field.charges(&weights);
+/// let charges = field.charges(&weights).unwrap();
 /// let x = [[0.1, 0.2, 0.3]];
 /// let mut far = [0.0];
-/// field.values(&charges, &x, &mut far);
+/// field.values(&charges, &x, &mut far).unwrap();
+/// assert!(field.values(&charges, &x, &mut [0.0; 2]).is_err()); // one output per point
 /// let direct: f64 = centres.iter().zip(&weights)
 ///     .map(|(c, w)| w * (0..3).map(|d| (x[0][d] - c[d]).powi(2)).sum::<f64>().powf(1.5))
 ///     .sum();
@@ -119,8 +120,9 @@ impl<const D: usize> FarField<D> {
     /// Moves `weights` (one per centre, in the caller's order) onto every cluster's proxies:
     /// leaves from their centres, parents from their children's proxies (interpolation along
     /// one axis at a time), deepest level first, each level on every core.
-    pub fn charges(&self, weights: &[f64]) -> Charges {
-        assert_eq!(weights.len(), self.len(), "one weight per centre");
+    /// A `weights` of another length than the centres is refused.
+    pub fn charges(&self, weights: &[f64]) -> Result<Charges, LengthMismatch> {
+        check_length("weights", self.len(), weights.len())?;
         let sorted: Vec<f64> = self.tree.order.iter().map(|&i| weights[i]).collect();
         let mut proxy: Vec<Vec<f64>> = vec![Vec::new(); self.tree.nodes.len()];
         for level in self.levels.iter().rev() {
@@ -133,16 +135,24 @@ impl<const D: usize> FarField<D> {
                 proxy[n] = q;
             }
         }
-        Charges {
+        Ok(Charges {
             weights: sorted,
             proxy,
-        }
+        })
+    }
+
+    /// Refuses charges made by another field (their lengths differ from this one's).
+    fn check_charges(&self, charges: &Charges) -> Result<(), LengthMismatch> {
+        check_length("charges", self.len(), charges.weights.len())?;
+        check_length("charges", self.tree.nodes.len(), charges.proxy.len())
     }
 
     /// Node `n`'s proxy charges from its children's (or its own centres where a child has no
     /// grid, or `n` is a leaf).
     fn node_charges(&self, n: usize, weights: &[f64], proxy: &[Vec<f64>]) -> Vec<f64> {
-        let axes = self.grids[n].as_ref().expect("a node with a grid");
+        let Some(axes) = self.grids[n].as_ref() else {
+            return Vec::new();
+        };
         let mut q = vec![0.0; grid_len(axes)];
         let node = &self.tree.nodes[n];
         let parts: Vec<usize> = match node.children {
@@ -173,8 +183,14 @@ impl<const D: usize> FarField<D> {
     }
 
     /// Σⱼ wⱼ φ(|xᵢ − cⱼ|) at every target (no affine part).
-    pub fn values(&self, charges: &Charges, targets: &[[f64; D]], out: &mut [f64]) {
-        assert_eq!(targets.len(), out.len(), "one output per target");
+    pub fn values(
+        &self,
+        charges: &Charges,
+        targets: &[[f64; D]],
+        out: &mut [f64],
+    ) -> Result<(), LengthMismatch> {
+        check_length("output", targets.len(), out.len())?;
+        self.check_charges(charges)?;
         let target_tree = Tree::new(targets, self.settings.target_leaf);
         let parts: Vec<(usize, Vec<f64>)> = target_tree
             .leaves()
@@ -184,15 +200,16 @@ impl<const D: usize> FarField<D> {
                 let idx = target_tree.points_of(leaf);
                 let points: Vec<[f64; D]> = idx.iter().map(|&i| targets[i]).collect();
                 let mut v = vec![0.0; points.len()];
-                self.leaf_values(charges, &node.lo, &node.hi, &points, &mut v);
-                (leaf, v)
+                self.leaf_values(charges, &node.lo, &node.hi, &points, &mut v)?;
+                Ok((leaf, v))
             })
-            .collect();
+            .collect::<Result<_, LengthMismatch>>()?;
         for (leaf, v) in parts {
             for (&i, x) in target_tree.points_of(leaf).iter().zip(v) {
                 out[i] = x;
             }
         }
+        Ok(())
     }
 
     /// Σⱼ wⱼ φ(|xᵢ − cⱼ|) and its gradient at every target (no affine part).
@@ -202,9 +219,10 @@ impl<const D: usize> FarField<D> {
         targets: &[[f64; D]],
         values: &mut [f64],
         gradients: &mut [[f64; D]],
-    ) {
-        assert_eq!(targets.len(), values.len(), "one value per target");
-        assert_eq!(targets.len(), gradients.len(), "one gradient per target");
+    ) -> Result<(), LengthMismatch> {
+        check_length("values", targets.len(), values.len())?;
+        check_length("gradients", targets.len(), gradients.len())?;
+        self.check_charges(charges)?;
         let target_tree = Tree::new(targets, self.settings.target_leaf);
         let parts: Vec<(usize, Vec<f64>, Vec<[f64; D]>)> = target_tree
             .leaves()
@@ -220,22 +238,24 @@ impl<const D: usize> FarField<D> {
                 let mut g = vec![[0.0; D]; points.len()];
                 self.leaf_values_and_gradients(
                     charges, &node.lo, &node.hi, &points, &mut v, &mut g,
-                );
-                (leaf, v, g)
+                )?;
+                Ok((leaf, v, g))
             })
-            .collect();
+            .collect::<Result<_, LengthMismatch>>()?;
         for (leaf, v, g) in parts {
             for ((&i, x), y) in target_tree.points_of(leaf).iter().zip(v).zip(g) {
                 values[i] = x;
                 gradients[i] = y;
             }
         }
+        Ok(())
     }
 
     /// Σⱼ wⱼ φ(|cᵢ − cⱼ|) at every centre, in the caller's order: the product of the kernel
     /// matrix with the weights, the targets grouped by the field's own leaves.
-    pub fn self_values(&self, charges: &Charges, out: &mut [f64]) {
-        assert_eq!(out.len(), self.len(), "one output per centre");
+    pub fn self_values(&self, charges: &Charges, out: &mut [f64]) -> Result<(), LengthMismatch> {
+        check_length("output", self.len(), out.len())?;
+        self.check_charges(charges)?;
         let leaves = self.tree.leaves();
         let parts: Vec<(usize, Vec<f64>)> = leaves
             .par_iter()
@@ -243,15 +263,16 @@ impl<const D: usize> FarField<D> {
                 let node = &self.tree.nodes[leaf];
                 let points = &self.centres[node.start..node.end];
                 let mut v = vec![0.0; points.len()];
-                self.leaf_values(charges, &node.lo, &node.hi, points, &mut v);
-                (leaf, v)
+                self.leaf_values(charges, &node.lo, &node.hi, points, &mut v)?;
+                Ok((leaf, v))
             })
-            .collect();
+            .collect::<Result<_, LengthMismatch>>()?;
         for (leaf, v) in parts {
             for (&i, x) in self.tree.points_of(leaf).iter().zip(v) {
                 out[i] = x;
             }
         }
+        Ok(())
     }
 
     fn leaf_values(
@@ -261,17 +282,16 @@ impl<const D: usize> FarField<D> {
         hi: &[f64; D],
         points: &[[f64; D]],
         out: &mut [f64],
-    ) {
+    ) -> Result<(), LengthMismatch> {
         out.fill(0.0);
         let mut part = vec![0.0; points.len()];
         for (c, w) in self.interactions(charges, lo, hi) {
-            InterpolantView::new(self.kernel, c, w, 0.0, [0.0; D])
-                .and_then(|f| f.values(points, &mut part))
-                .expect("matching lengths");
+            InterpolantView::new(self.kernel, c, w, 0.0, [0.0; D])?.values(points, &mut part)?;
             for (o, p) in out.iter_mut().zip(&part) {
                 *o += p;
             }
         }
+        Ok(())
     }
 
     fn leaf_values_and_gradients(
@@ -282,14 +302,13 @@ impl<const D: usize> FarField<D> {
         points: &[[f64; D]],
         values: &mut [f64],
         gradients: &mut [[f64; D]],
-    ) {
+    ) -> Result<(), LengthMismatch> {
         values.fill(0.0);
         gradients.fill([0.0; D]);
         let (mut v, mut g) = (vec![0.0; points.len()], vec![[0.0; D]; points.len()]);
         for (c, w) in self.interactions(charges, lo, hi) {
-            InterpolantView::new(self.kernel, c, w, 0.0, [0.0; D])
-                .and_then(|f| f.values_and_gradients(points, &mut v, &mut g))
-                .expect("matching lengths");
+            InterpolantView::new(self.kernel, c, w, 0.0, [0.0; D])?
+                .values_and_gradients(points, &mut v, &mut g)?;
             for (o, p) in values.iter_mut().zip(&v) {
                 *o += p;
             }
@@ -299,6 +318,7 @@ impl<const D: usize> FarField<D> {
                 }
             }
         }
+        Ok(())
     }
 
     /// What targets in the box [lo, hi] see, as slices of centres (or proxies) with their
@@ -383,9 +403,9 @@ pub fn calibrated<const D: usize>(
             ..FarFieldSettings::default()
         };
         let field = FarField::new(kernel, centres, &settings);
-        let charges = field.charges(weights);
+        let charges = field.charges(weights).ok()?;
         let mut approx = vec![0.0; sample.len()];
-        field.values(&charges, sample, &mut approx);
+        field.values(&charges, sample, &mut approx).ok()?;
         let measured = approx
             .iter()
             .zip(&exact)
@@ -463,4 +483,21 @@ fn interpolate_grid<const D: usize>(to: &[Axis; D], from: &[Axis; D], q: &[f64])
         t = next;
     }
     t
+}
+
+/// `found` must be `expected`, or the slice `what` is refused.
+pub(crate) fn check_length(
+    what: &'static str,
+    expected: usize,
+    found: usize,
+) -> Result<(), LengthMismatch> {
+    if expected == found {
+        Ok(())
+    } else {
+        Err(LengthMismatch {
+            what,
+            expected,
+            found,
+        })
+    }
 }

@@ -83,11 +83,13 @@ fn worst_relative_error(
         ..FarFieldSettings::default()
     };
     let field = FarField::new(kernel, centres, &settings);
-    let charges = field.charges(w);
+    let charges = field.charges(w).unwrap();
     let (mut v, mut g) = (vec![0.0; targets.len()], vec![[0.0; 3]; targets.len()]);
-    field.values_and_gradients(&charges, targets, &mut v, &mut g);
+    field
+        .values_and_gradients(&charges, targets, &mut v, &mut g)
+        .unwrap();
     let mut only = vec![0.0; targets.len()];
-    field.values(&charges, targets, &mut only);
+    field.values(&charges, targets, &mut only).unwrap();
     let direct = InterpolantView::new(kernel, centres, w, 0.0, [0.0; 3]).unwrap();
     let (mut dv, mut dg) = (vec![0.0; targets.len()], vec![[0.0; 3]; targets.len()]);
     direct
@@ -146,7 +148,9 @@ fn far_field_is_exact_for_clusters_it_never_approximates() {
     let w = weights(40, 3);
     let field = FarField::new(Kernel::Cubic, &centres, &FarFieldSettings::default());
     let mut out = vec![0.0; 40];
-    field.self_values(&field.charges(&w), &mut out);
+    field
+        .self_values(&field.charges(&w).unwrap(), &mut out)
+        .unwrap();
     let direct = InterpolantView::new(Kernel::Cubic, &centres, &w, 0.0, [0.0; 3]).unwrap();
     for (c, o) in centres.iter().zip(&out) {
         assert!((direct.value(c) - o).abs() <= 1e-12 * magnitude(Kernel::Cubic, &centres, &w, c));
@@ -165,7 +169,9 @@ fn self_values_match_direct_sums_at_the_centres() {
     };
     let field = FarField::new(Kernel::Cubic, &centres, &settings);
     let mut far = vec![0.0; 5000];
-    field.self_values(&field.charges(&w), &mut far);
+    field
+        .self_values(&field.charges(&w).unwrap(), &mut far)
+        .unwrap();
     let direct = InterpolantView::new(Kernel::Cubic, &centres, &w, 0.0, [0.0; 3]).unwrap();
     let mut exact = vec![0.0; 5000];
     direct.values(&centres, &mut exact).unwrap();
@@ -226,5 +232,34 @@ fn evaluator_sums_small_models_directly() {
     assert!(
         evaluator.values(&points, &mut out).is_err(),
         "a short output is refused"
+    );
+}
+
+#[test]
+fn wrong_lengths_and_foreign_charges_are_refused() {
+    let centres = cloud(Cloud::Random, 3000, 4);
+    let w = weights(3000, 4);
+    let field = FarField::new(Kernel::Cubic, &centres, &FarFieldSettings::default());
+    assert_eq!(field.charges(&w[..10]).unwrap_err().what, "weights");
+    let other = FarField::new(Kernel::Cubic, &centres[..500], &FarFieldSettings::default());
+    let foreign = other.charges(&w[..500]).unwrap();
+    let mut out = vec![0.0; 3000];
+    assert_eq!(
+        field.self_values(&foreign, &mut out).unwrap_err().what,
+        "charges"
+    );
+    let charges = field.charges(&w).unwrap();
+    assert_eq!(
+        field.self_values(&charges, &mut out[..5]).unwrap_err().what,
+        "output"
+    );
+    let (mut v, mut g) = (vec![0.0; 2], vec![[0.0; 3]; 3]);
+    let two = [[0.0; 3]; 2];
+    assert_eq!(
+        field
+            .values_and_gradients(&charges, &two, &mut v, &mut g)
+            .unwrap_err()
+            .what,
+        "gradients"
     );
 }

@@ -80,7 +80,14 @@ impl<'a, const D: usize> Products<'a, D> {
         let (w, c) = x.split_at(k);
         match self.far.as_ref().filter(|_| self.is_far()) {
             Some(field) => {
-                field.self_values(&field.charges(w), &mut out[..k]);
+                // Lengths match by construction; a mismatch would show as NaN, like direct sums.
+                let product = field
+                    .charges(w)
+                    .and_then(|charges| field.self_values(&charges, &mut out[..k]));
+                if product.is_err() {
+                    out.fill(f64::NAN);
+                    return;
+                }
                 for (o, p) in out[..k].iter_mut().zip(points) {
                     *o += affine(c, p);
                 }
