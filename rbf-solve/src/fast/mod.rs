@@ -264,8 +264,9 @@ pub fn solve_iterative<const D: usize>(
 fn rounding_floor<const D: usize>(system: &System<D>, weights: &[f64]) -> f64 {
     let points = system.normalized_points();
     let magnitudes: Vec<f64> = weights.iter().map(|w| w.abs()).collect();
-    let rows: Vec<[f64; D]> = (0..2000.min(points.len()))
-        .map(|i| points[i * points.len() / 2000.min(points.len())])
+    let rows: Vec<[f64; D]> = products::spread_rows(points.len(), 2000)
+        .into_iter()
+        .map(|i| points[i])
         .collect();
     let mut sums = vec![0.0; rows.len()];
     let evaluated =

@@ -153,7 +153,7 @@ fn affine<const D: usize>(c: &[f64], p: &[f64; D]) -> f64 {
 }
 
 /// About `count` row indices spread evenly over 0..k (all of them if k ≤ count).
-fn spread_rows(k: usize, count: usize) -> Vec<usize> {
+pub(crate) fn spread_rows(k: usize, count: usize) -> Vec<usize> {
     if k <= count {
         return (0..k).collect();
     }
