@@ -8,7 +8,7 @@ from typing import Any, NamedTuple, Optional, Tuple, Union
 
 import numpy as np
 
-from . import _native
+from . import _checks, _native
 from ._native import Model, RbfError
 
 ArrayLike = Any
@@ -26,13 +26,14 @@ def _points_and_values(arg: Any, default: float, name: str) -> Tuple[np.ndarray,
     if isinstance(arg, tuple):
         if len(arg) != 2:
             raise RbfError(f"{name} must be points or a pair (points, values)")
-        points = np.asarray(arg[0], dtype=np.float64)
-        values = np.broadcast_to(np.asarray(arg[1], dtype=np.float64), (len(points),))
+        points = _checks.points(arg[0], name)
+        try:
+            values = np.broadcast_to(_checks.floats(arg[1], f"{name} values"), (len(points),))
+        except ValueError:
+            raise RbfError(f"{name}: give one value or one per point ({len(points)})") from None
     else:
-        points = np.asarray(arg, dtype=np.float64)
+        points = _checks.points(arg, name)
         values = np.full(len(points), default)
-    if points.ndim != 2:
-        raise RbfError(f"{name}: points must have shape (n, 2) or (n, 3), not {points.shape}")
     return points, values
 
 
@@ -73,9 +74,7 @@ def fit(
     """
     parts = []
     if boundary is not None:
-        p = np.asarray(boundary, dtype=np.float64)
-        if p.ndim != 2:
-            raise RbfError(f"boundary: points must have shape (n, 2) or (n, 3), not {p.shape}")
+        p = _checks.points(boundary, "boundary")
         parts.append((p, np.zeros(len(p)), _BOUNDARY, None))
     if interior is not None:
         p, v = _points_and_values(interior, 1.0, "interior")
@@ -86,12 +85,14 @@ def fit(
     if normals is not None:
         if not (isinstance(normals, tuple) and len(normals) == 2):
             raise RbfError("normals must be a pair (points, normals)")
-        p = np.asarray(normals[0], dtype=np.float64)
-        n = np.asarray(normals[1], dtype=np.float64)
+        p = _checks.floats(normals[0], "normals")
+        n = _checks.floats(normals[1], "normals")
         if p.ndim != 2 or n.shape != p.shape:
             raise RbfError(
                 f"normals: points and normals must both have shape (n, dim), not {p.shape} and {n.shape}"
             )
+        p = _checks.points(p, "normals")
+        _checks.finite_rows(n, "normal vectors")
         parts.append((p, np.ones(len(p)), _NORMAL, n))
     if not parts:
         raise RbfError("no constraints: give boundary, interior, exterior or normals")
@@ -163,6 +164,8 @@ def from_oriented_points(
     >>> bool(abs(m(p)).max() < 1e-9)
     True
     """
+    points = _checks.points(points, "points")
+    normals = _checks.points(normals, "normals", dims=(points.shape[1],))
     return fit(
         normals=(points, normals),
         kernel=kernel,
@@ -194,8 +197,8 @@ def convert(
     a normal constraint at every vertex (``max_constraints`` thins them evenly), ``offset`` a
     fraction of the box. With ``return_report``, also a dict of the conversion's figures.
     """
-    model, report = _native.convert(
-        vertices,
+    model, report = _native._convert(
+        _checks.points(vertices, "vertices", dims=(3,)),
         faces,
         method=method,
         resolution=resolution,
@@ -254,7 +257,7 @@ def signed_distance(
 
 def _grid(vertices, faces, resolution, supersampling, method, distance):
     values, origin, size = _native._voxelize(
-        vertices,
+        _checks.points(vertices, "vertices", dims=(3,)),
         faces,
         resolution=resolution,
         supersampling=supersampling,

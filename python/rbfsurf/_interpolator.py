@@ -6,7 +6,7 @@ from typing import Any, List, Optional
 
 import numpy as np
 
-from . import _native
+from . import _checks, _native
 from ._native import Model, RbfError
 
 ArrayLike = Any
@@ -36,7 +36,8 @@ class RBFInterpolator:
       ``"dense"``, ``"fast"``).
 
     Calling it on (m, dim) points returns (m, ...) values; ``gradient`` returns
-    (m, ..., dim). ``models`` holds one ``rbfsurf.Model`` per column of ``d`` (None for a
+    (m, ..., dim). A NaN or an infinity in ``y`` or in the query points raises ``RbfError``
+    naming the row (scipy returns NaN for such queries). ``models`` holds one ``rbfsurf.Model`` per column of ``d`` (None for a
     column of zeros).
 
     >>> import numpy as np, rbfsurf
@@ -71,12 +72,13 @@ class RBFInterpolator:
             )
         if degree is not None and degree != 1:
             raise RbfError(f"degree must be 1 (rbf's polynomial is linear), not {degree}")
-        y = np.asarray(y, dtype=np.float64)
+        y = _checks.floats(y, "y")
         if y.ndim != 2:
             raise RbfError(f"y must be a 2-dimensional array, not of shape {y.shape}")
         n, dim = y.shape
         if dim not in (2, 3):
             raise RbfError(f"y has {dim} columns: rbfsurf interpolates in 2 or 3 dimensions")
+        _checks.finite_rows(y, "y")
         d = np.asarray(d)
         if np.iscomplexobj(d):
             raise RbfError("d must be real: complex values are not supported")
@@ -91,6 +93,10 @@ class RBFInterpolator:
             smoothing = np.full(n, float(smoothing))
         elif smoothing.shape != (n,):
             raise RbfError(f"smoothing must be a number or have shape ({n},), not {smoothing.shape}")
+        bad = np.flatnonzero(~(np.isfinite(smoothing) & (smoothing >= 0)))
+        if len(bad):
+            i = int(bad[0])
+            raise RbfError(f"smoothing[{i}] = {float(smoothing[i])!r}: must be a finite number ≥ 0")
         if epsilon is not None:
             if not (np.isfinite(epsilon) and epsilon > 0):
                 raise RbfError(f"epsilon must be a finite number > 0, not {epsilon}")
@@ -126,11 +132,12 @@ class RBFInterpolator:
             )
 
     def _points(self, x: ArrayLike) -> np.ndarray:
-        x = np.asarray(x, dtype=np.float64)
+        x = _checks.floats(x, "x")
         if x.ndim != 2 or x.shape[1] != self.y.shape[1]:
             raise RbfError(
                 f"x must have shape (m, {self.y.shape[1]}), like y; its shape is {x.shape}"
             )
+        _checks.finite_rows(x, "x")
         return x
 
     def __call__(self, x: ArrayLike) -> np.ndarray:

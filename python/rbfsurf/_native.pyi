@@ -1,4 +1,5 @@
-"""Type stubs of the native module rbfsurf._native (Rust, PyO3)."""
+"""Type stubs of the native module rbfsurf._native (Rust, PyO3), for what users meet
+directly: type checkers and editors cannot read a compiled module."""
 
 from os import PathLike
 from typing import Any, Dict, List, Optional, Tuple, Union
@@ -50,39 +51,10 @@ class Session:
     def model(self) -> Model: ...
     def __len__(self) -> int: ...
 
-def _fit(
-    points: npt.ArrayLike,
-    kinds: npt.ArrayLike,
-    values: npt.ArrayLike,
-    normals: Optional[npt.ArrayLike],
-    smoothing: npt.ArrayLike,
-    *,
-    kernel: Optional[str] = None,
-    lam: float = 0.0,
-    offset: Optional[float] = None,
-    method: str = "auto",
-    max_residual: float = 1e-6,
-    allow_unconverged: bool = False,
-) -> Model: ...
-def convert(
-    vertices: npt.ArrayLike,
-    faces: npt.ArrayLike,
-    *,
-    method: str = "iterative",
-    resolution: int = 128,
-    max_constraints: Optional[int] = None,
-    max_iterations: int = 30,
-    smoothing: float = 0.0,
-    offset: float = 0.01,
-) -> Tuple[Model, Dict[str, Any]]: ...
-def _voxelize(
-    vertices: npt.ArrayLike,
-    faces: npt.ArrayLike,
-    *,
-    resolution: int = 64,
-    supersampling: int = 4,
-    method: str = "auto",
-    distance: bool = False,
-) -> Tuple[npt.NDArray[np.float32], List[float], float]: ...
+# The private helpers (_fit, _convert, _voxelize) are called only by rbfsurf's own Python
+# layer, whose public functions carry the signatures and documentation; repeating their
+# arguments here would be a second copy to keep in step. Stubs stay for what users meet
+# directly: the classes, the error and the mesh files.
+def __getattr__(name: str) -> Any: ...
 def read_mesh(path: _Path) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
 def write_mesh(path: _Path, vertices: npt.ArrayLike, faces: npt.ArrayLike) -> None: ...

@@ -60,7 +60,9 @@ impl<'py> Floats<'py> {
         Ok(Cow::Owned(self.array.as_array().iter().copied().collect()))
     }
 
-    /// The rows of an `(n, D)` array as points; an error naming `name` for another shape.
+    /// The rows of an `(n, D)` array as points; an error naming `name` for another shape, and
+    /// `name` and the row for the first row with a NaN or an infinity (every entry point that
+    /// takes coordinates, queries included, refuses them: see [`finite_rows`]).
     pub(crate) fn points<const D: usize>(&self, name: &str) -> PyResult<Cow<'_, [[f64; D]]>> {
         let shape = self.shape();
         if shape.len() != 2 || shape[1] != D {
@@ -69,10 +71,12 @@ impl<'py> Floats<'py> {
                 shape_text(&shape)
             )));
         }
-        Ok(match self.values()? {
+        let points = match self.values()? {
             Cow::Borrowed(s) => Cow::Borrowed(s.as_chunks::<D>().0),
             Cow::Owned(v) => Cow::Owned(v.as_chunks::<D>().0.to_vec()),
-        })
+        };
+        finite_rows(&points, name)?;
+        Ok(points)
     }
 
     /// A one-dimensional array of `n` numbers, or a scalar repeated `n` times.
@@ -86,6 +90,31 @@ impl<'py> Floats<'py> {
                 "{name} must be a number or have shape ({n},), not {}",
                 shape_text(&shape)
             ))),
+        }
+    }
+}
+
+/// Refuses the first row of `points` with a coordinate that is NaN or infinite, naming
+/// `name[row]` as rbfsurf's Python layer does (`rbfsurf._checks.points`).
+pub(crate) fn finite_rows<const D: usize>(points: &[[f64; D]], name: &str) -> PyResult<()> {
+    match points.iter().position(|p| !p.iter().all(|v| v.is_finite())) {
+        None => Ok(()),
+        Some(i) => {
+            // Written as Python writes floats: nan, inf, -inf, 0.5.
+            let coordinates: Vec<String> = points[i]
+                .iter()
+                .map(|v| {
+                    if v.is_nan() {
+                        "nan".into()
+                    } else {
+                        format!("{v:?}")
+                    }
+                })
+                .collect();
+            Err(bad(format!(
+                "{name}[{i}] = [{}]: every coordinate must be a finite number",
+                coordinates.join(", ")
+            )))
         }
     }
 }

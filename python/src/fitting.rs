@@ -14,15 +14,6 @@ const INTERIOR: u8 = 1;
 const EXTERIOR: u8 = 2;
 const NORMAL: u8 = 3;
 
-/// How the system is solved.
-#[derive(Clone, Copy)]
-enum Method {
-    /// Dense up to `rbf_solve::DENSE_LIMIT` rows, iterative above.
-    Auto,
-    Dense,
-    Fast,
-}
-
 /// A kernel from scipy's name (or rbf's).
 pub(crate) fn kernel(name: Option<&str>) -> PyResult<Option<Kernel>> {
     Ok(match name {
@@ -46,7 +37,7 @@ struct Rows<'py> {
     normals: Option<Floats<'py>>,
     smoothing: Vec<f64>,
     settings: FitSettings,
-    method: Method,
+    method: rbf_solve::Method,
     allow_unconverged: bool,
 }
 
@@ -55,19 +46,10 @@ fn fit_in<const D: usize>(py: Python<'_>, rows: &Rows<'_>) -> PyResult<Model>
 where
     CoreModel<D>: IntoAnyModel,
 {
-    let Rows {
-        positions,
-        kinds,
-        values,
-        normals,
-        smoothing,
-        settings,
-        method,
-        allow_unconverged,
-    } = rows;
-    let (settings, method, allow_unconverged) = (*settings, *method, *allow_unconverged);
-    let points = positions.points::<D>("points")?;
-    let normals = normals
+    let (settings, values, kinds) = (rows.settings, &rows.values, &rows.kinds);
+    let points = rows.positions.points::<D>("points")?;
+    let normals = rows
+        .normals
         .as_ref()
         .map(|n| n.points::<D>("normals"))
         .transpose()?;
@@ -98,16 +80,12 @@ where
             },
             k => return Err(bad(format!("constraint {i}: unknown kind code {k}"))),
         };
-        constraints.push(c.with_smoothing(smoothing[i]));
+        constraints.push(c.with_smoothing(rows.smoothing[i]));
     }
     let options = FitOptions {
-        method: match method {
-            Method::Auto => rbf_solve::Method::Auto,
-            Method::Dense => rbf_solve::Method::Dense,
-            Method::Fast => rbf_solve::Method::Iterative,
-        },
+        method: rows.method,
         iterative: IterativeOptions {
-            allow_unconverged,
+            allow_unconverged: rows.allow_unconverged,
             ..Default::default()
         },
         ..FitOptions::default()
@@ -161,9 +139,9 @@ pub(crate) fn _fit(
     let smoothing = Floats::new(smoothing, "smoothing")?.per_row(n, "smoothing")?;
     let normals = normals.map(|n| Floats::new(n, "normals")).transpose()?;
     let method = match method {
-        "auto" => Method::Auto,
-        "dense" => Method::Dense,
-        "fast" => Method::Fast,
+        "auto" => rbf_solve::Method::Auto,
+        "dense" => rbf_solve::Method::Dense,
+        "fast" => rbf_solve::Method::Iterative,
         other => {
             return Err(bad(format!(
                 "method must be \"auto\", \"dense\" or \"fast\", not {other:?}"

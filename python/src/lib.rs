@@ -21,7 +21,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::Model>()?;
     m.add_class::<session::Session>()?;
     m.add_function(wrap_pyfunction!(fitting::_fit, m)?)?;
-    m.add_function(wrap_pyfunction!(meshes::convert, m)?)?;
+    m.add_function(wrap_pyfunction!(meshes::_convert, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::_voxelize, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::write_mesh, m)?)?;

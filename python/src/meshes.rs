@@ -49,7 +49,7 @@ pub(crate) fn write_mesh(
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, *, method="iterative", resolution=128, max_constraints=None, max_iterations=30, smoothing=0.0, offset=0.01))]
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn convert<'py>(
+pub(crate) fn _convert<'py>(
     py: Python<'py>,
     vertices: &Bound<'py, PyAny>,
     faces: &Bound<'py, PyAny>,

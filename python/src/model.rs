@@ -113,7 +113,8 @@ pub(crate) fn kernel_name(k: Kernel) -> &'static str {
 #[pymethods]
 impl Model {
     /// f at the rows of ``x``, an (n, dim) array-like (float64 arrays are read in place):
-    /// an (n,) float64 array.
+    /// an (n,) float64 array. A row with a NaN or an infinity raises ``RbfError`` naming it
+    /// (scipy would return NaN; a silent NaN travels far before anyone sees it).
     fn __call__<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let x = Floats::new(x, "x")?;
         let (v, n) = match &self.inner {

@@ -5,10 +5,10 @@ import doctest
 import pytest
 
 import rbfsurf
-from rbfsurf import _api, _interpolator, _native
+from rbfsurf import _api, _checks, _interpolator, _native
 
 
-@pytest.mark.parametrize("module", [rbfsurf, _api, _interpolator], ids=lambda m: m.__name__)
+@pytest.mark.parametrize("module", [rbfsurf, _api, _checks, _interpolator], ids=lambda m: m.__name__)
 def test_module_examples(module):
     result = doctest.testmod(module, optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
