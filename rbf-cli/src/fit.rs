@@ -49,7 +49,7 @@ Methods (--method):
            near rounding, with a condition estimate
   fast     flexible GMRES preconditioned by overlapping subdomains and a coarse level (Beatson,
            Light & Billings 2000): O(K) memory; stops when max|f(cᵢ) − hᵢ| ≤ max|hᵢ| ×
-           --max-residual / 10, or fails (--allow-unconverged keeps the model with a warning);
+           --max-residual, measured at every row, or fails (--allow-unconverged keeps the model with a warning);
            from 400 000 rows its products go through a far field whose claimed residual is
            checked by direct sums at 2000 sampled rows
   greedy   a subset of the constraints (--tolerance, --max-centres)";
@@ -467,7 +467,7 @@ impl Job<'_> {
         let tolerance = self
             .iterative
             .tolerance
-            .unwrap_or(0.1 * self.settings.max_residual);
+            .unwrap_or(self.settings.max_residual);
         let spinner = spinner(self.quiet, format!("checking {rows} rows"));
         let rounding_floor = std::cell::Cell::new(None);
         let solving = std::cell::Cell::new(Instant::now());

@@ -1,6 +1,8 @@
 //! Flexible GMRES (Saad, "A flexible inner-outer preconditioned GMRES algorithm", SIAM J. Sci.
 //! Comput. 14(2), 1993) with restarts: right preconditioning, modified Gram–Schmidt, Givens
-//! rotations. The caller judges convergence by the true residual at each restart.
+//! rotations. The caller judges convergence by the true residual, which is computed only when
+//! the recurrence's residual vector (free from the Arnoldi relation) says it may be met, and
+//! without leaving the cycle: a refused check costs one product, not a restart.
 
 use rayon::prelude::*;
 
@@ -12,8 +14,9 @@ pub(crate) struct GmresLimits {
     pub(crate) max_iterations: usize,
 }
 
-/// The caller's verdict on an iterate x, given its true residual and the iterations so far.
-pub(crate) type Judge<'a> = dyn FnMut(&[f64], &[f64], usize) -> Acceptance + 'a;
+/// The caller's verdict on an iterate x, given its true residual, the iterations so far and
+/// what the recurrence claimed for it (the largest entry of its residual vector).
+pub(crate) type Judge<'a> = dyn FnMut(&[f64], &[f64], usize, f64) -> Acceptance + 'a;
 
 /// The end of a run.
 pub(crate) struct GmresEnd {
@@ -27,11 +30,14 @@ pub(crate) struct GmresEnd {
 ///
 /// - `apply(v, out)`: out = A v;
 /// - `precondition(v)`: an approximation of A⁻¹ v (it may change between calls);
-/// - `accept(x, r, iterations)`: given the iterate, its true residual r = b − A x and the
-///   iterations so far, says whether it is
-///   good enough; asked at every restart and whenever the recurrence's residual estimate falls
-///   below `target(iteration)`, a 2-norm the caller may tighten after a refused check;
-/// - `progress(iteration, estimate)`: after every iteration.
+/// - `accept(x, r, iterations, claimed)`: given the iterate, its true residual r = b − A x, the
+///   iterations so far and the recurrence's claim, says whether it is good enough; asked at
+///   the start, at every restart,
+///   and whenever the largest entry of the recurrence's residual vector falls below the
+///   `target` it last returned (lowered by how far the recurrence was from the truth at a
+///   refused check);
+/// - `progress(iteration, estimate)`: after every iteration, with the largest entry of the
+///   recurrence's residual vector.
 pub(crate) fn fgmres(
     b: &[f64],
     limits: &GmresLimits,
@@ -46,33 +52,26 @@ pub(crate) fn fgmres(
     let mut r = b.to_vec();
     let mut iterations = 0;
     let mut scratch = vec![0.0; n];
-    loop {
-        let target = match accept(&x, &r, iterations) {
-            Acceptance::Done => {
-                return GmresEnd {
-                    x,
-                    iterations,
-                    converged: true,
-                };
-            }
-            Acceptance::Continue { target } => target,
-            Acceptance::GiveUp => {
-                return GmresEnd {
-                    x,
-                    iterations,
-                    converged: false,
-                };
-            }
-        };
+    // The recurrence's residual over the true one at the last refused check (at most 1).
+    let mut trust = 1.0_f64;
+    let end = |x: Vec<f64>, iterations: usize, converged: bool| GmresEnd {
+        x,
+        iterations,
+        converged,
+    };
+    let initial = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    let mut target = match accept(&x, &r, iterations, initial) {
+        Acceptance::Done => return end(x, iterations, true),
+        Acceptance::GiveUp => return end(x, iterations, false),
+        Acceptance::Continue { target } => target,
+    };
+    'cycles: loop {
         let beta = norm(&r);
         if iterations >= limits.max_iterations || !beta.is_finite() || beta == 0.0 {
-            return GmresEnd {
-                x,
-                iterations,
-                converged: false,
-            };
+            return end(x, iterations, false);
         }
-        // Arnoldi basis V, preconditioned directions Z, Hessenberg H (column-wise), rotations.
+        // Arnoldi basis V, preconditioned directions Z, Hessenberg H (column-wise, rotated
+        // into R), rotations, and the rotated right-hand side s.
         let mut v: Vec<Vec<f64>> = vec![r.iter().map(|x| x / beta).collect()];
         let mut z: Vec<Vec<f64>> = Vec::with_capacity(m);
         let mut h: Vec<Vec<f64>> = Vec::with_capacity(m);
@@ -111,39 +110,87 @@ pub(crate) fn fgmres(
             s.push(-sn * sj);
             h.push(col);
             iterations += 1;
-            let estimate = s[j + 1].abs();
-            progress(iterations, estimate);
             let breakdown = wn <= 1e-14 * beta;
-            if estimate <= target || breakdown || iterations >= limits.max_iterations || j + 1 == m
-            {
-                break;
+            if !breakdown {
+                v.push(w.iter().map(|x| x / wn).collect());
             }
-            v.push(w.iter().map(|x| x / wn).collect());
-        }
-        // y = H⁻¹ s by back substitution; x += Z y.
-        let k = h.len();
-        let mut y = vec![0.0; k];
-        for i in (0..k).rev() {
-            let mut t = s[i];
-            for (jj, yj) in y.iter().enumerate().skip(i + 1) {
-                t -= h[jj][i] * yj;
+            // The recurrence's residual vector b − A x_j = s_{j+1} V_{j+1} Qᵀ e_{j+1}.
+            let estimate = recurrence_residual(&v, &cs, s[j + 1]);
+            let largest = estimate.iter().fold(0.0_f64, |a, r| a.max(r.abs()));
+            progress(iterations, largest);
+            let last = breakdown || iterations >= limits.max_iterations || j + 1 == m;
+            if largest > target * trust && !last {
+                continue;
             }
-            y[i] = if h[i][i] != 0.0 { t / h[i][i] } else { 0.0 };
+            let xj = iterate(&x, &z, &h, &s);
+            apply(&xj, &mut scratch);
+            let rj: Vec<f64> = b.par_iter().zip(&scratch).map(|(bi, ax)| bi - ax).collect();
+            match accept(&xj, &rj, iterations, largest) {
+                Acceptance::Done => return end(xj, iterations, true),
+                Acceptance::GiveUp => return end(xj, iterations, false),
+                Acceptance::Continue { target: t } => {
+                    target = t;
+                    let truth = rj.iter().fold(0.0_f64, |a, r| a.max(r.abs()));
+                    if truth > 0.0 && largest < truth {
+                        trust = trust.min(largest / truth);
+                    }
+                }
+            }
+            if last {
+                // Restart from the cycle's last iterate, whose true residual was just measured.
+                x = xj;
+                r = rj;
+                continue 'cycles;
+            }
         }
-        for (zj, yj) in z.iter().zip(&y) {
-            axpy(*yj, zj, &mut x);
-        }
-        apply(&x, &mut scratch);
-        r.par_iter_mut()
-            .zip(b.par_iter().zip(&scratch))
-            .for_each(|(ri, (bi, ax))| *ri = bi - ax);
+        // Not reached: the cycle's last step is always `last`.
+        return end(x, iterations, false);
     }
+}
+
+/// x + Z y, with y = R⁻¹ s by back substitution (R the rotated Hessenberg columns).
+fn iterate(x: &[f64], z: &[Vec<f64>], h: &[Vec<f64>], s: &[f64]) -> Vec<f64> {
+    let k = h.len();
+    let mut y = vec![0.0; k];
+    for i in (0..k).rev() {
+        let mut t = s[i];
+        for (jj, yj) in y.iter().enumerate().skip(i + 1) {
+            t -= h[jj][i] * yj;
+        }
+        y[i] = if h[i][i] != 0.0 { t / h[i][i] } else { 0.0 };
+    }
+    let mut out = x.to_vec();
+    for (zj, yj) in z.iter().zip(&y) {
+        axpy(*yj, zj, &mut out);
+    }
+    out
+}
+
+/// s_{j+1} V_{j+1} Qᵀ e_{j+1}: the residual of the cycle's current least-squares iterate, from
+/// the basis and the rotations (Q = G_j ⋯ G_0), without a product. On breakdown V has j + 1
+/// vectors and the residual is 0 up to rounding.
+fn recurrence_residual(v: &[Vec<f64>], rotations: &[(f64, f64)], last: f64) -> Vec<f64> {
+    let k = rotations.len();
+    let mut q = vec![0.0; k + 1];
+    q[k] = 1.0;
+    for (i, &(c, sn)) in rotations.iter().enumerate().rev() {
+        let (a, bb) = (q[i], q[i + 1]);
+        q[i] = c * a - sn * bb;
+        q[i + 1] = sn * a + c * bb;
+    }
+    let n = v[0].len();
+    let mut out = vec![0.0; n];
+    for (vi, qi) in v.iter().zip(&q) {
+        axpy(last * qi, vi, &mut out);
+    }
+    out
 }
 
 /// What the caller says of an iterate.
 pub(crate) enum Acceptance {
     Done,
-    /// Go on; check again when the estimated 2-norm of the residual is below `target`.
+    /// Go on; check again when the largest entry of the recurrence's residual vector is below
+    /// `target`.
     Continue {
         target: f64,
     },
@@ -200,7 +247,7 @@ mod tests {
             },
             &apply,
             &|v| v.iter().map(|x| x / 4.0).collect(),
-            &mut |_, r, _| {
+            &mut |_, r, _, _| {
                 checks += 1;
                 if norm(r) < 1e-12 * norm(&b) {
                     Acceptance::Done
@@ -225,6 +272,45 @@ mod tests {
     }
 
     #[test]
+    fn the_recurrence_claims_the_true_residual_and_checks_cost_one_product_each() {
+        let n = 300;
+        let b: Vec<f64> = (0..n).map(|i| ((i * 5) % 11) as f64 - 5.0).collect();
+        let products = std::sync::atomic::AtomicUsize::new(0);
+        let counted = |v: &[f64], out: &mut [f64]| {
+            products.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            apply(v, out);
+        };
+        let (mut checks, mut worst_gap) = (0, 0.0_f64);
+        let end = fgmres(
+            &b,
+            &GmresLimits {
+                restart: 100,
+                max_iterations: 500,
+            },
+            &counted,
+            &|v| v.iter().map(|x| x / 4.0).collect(),
+            &mut |_, r, iterations, claimed| {
+                checks += 1;
+                let truth = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+                worst_gap = worst_gap.max((truth - claimed).abs());
+                // Refuse the first two checks after the start: the cycle must go on.
+                if iterations > 0 && checks > 3 && truth < 1e-10 {
+                    Acceptance::Done
+                } else {
+                    Acceptance::Continue { target: 1e-11 }
+                }
+            },
+            &mut |_, _| {},
+        );
+        assert!(end.converged);
+        assert!(worst_gap < 1e-9, "recurrence off the truth by {worst_gap}");
+        // One product per iteration and one per check after the start; no restart happened.
+        let used = products.load(std::sync::atomic::Ordering::Relaxed);
+        assert_eq!(used, end.iterations + checks - 1);
+        assert!(end.iterations < 100);
+    }
+
+    #[test]
     fn stops_unconverged_at_the_iteration_cap() {
         let b = vec![1.0; 100];
         let end = fgmres(
@@ -235,7 +321,7 @@ mod tests {
             },
             &apply,
             &|v| v.to_vec(),
-            &mut |_, _, _| Acceptance::Continue { target: 0.0 },
+            &mut |_, _, _, _| Acceptance::Continue { target: 0.0 },
             &mut |_, _| {},
         );
         assert!(!end.converged);
