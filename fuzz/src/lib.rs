@@ -208,3 +208,41 @@ pub fn voxelize(data: &[u8]) {
         }
     }
 }
+
+/// The far field of an arbitrary cloud (any floats, duplicates, a point, a line) with arbitrary
+/// settings from the first bytes, at arbitrary targets: values, gradients and the product at
+/// the centres; then the evaluator's choice of method at an arbitrary accuracy.
+pub fn far_field(data: &[u8]) {
+    if data.len() < 4 {
+        return;
+    }
+    let (head, rest) = data.split_at(4);
+    let settings = rbf_far::FarFieldSettings {
+        order: usize::from(head[0] % 18),
+        theta: f64::from(head[1]) / 128.0,
+        leaf: usize::from(head[2] % 20),
+        target_leaf: usize::from(head[3] % 40),
+    };
+    let v = tame(rest);
+    let n = (v.len() / 7).min(400);
+    let centres: Vec<[f64; 3]> = v[..3 * n].chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let weights = &v[3 * n..4 * n];
+    let targets: Vec<[f64; 3]> = v[4 * n..].chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    for kernel in [Kernel::Cubic, Kernel::Linear, Kernel::ThinPlate] {
+        let field = rbf_far::FarField::new(kernel, &centres, &settings);
+        let Ok(charges) = field.charges(weights) else {
+            continue;
+        };
+        let mut out = vec![0.0; targets.len()];
+        let mut gradients = vec![[0.0; 3]; targets.len()];
+        let _ = field.values(&charges, &targets, &mut out);
+        let _ = field.values_and_gradients(&charges, &targets, &mut out, &mut gradients);
+        let mut at_centres = vec![0.0; centres.len()];
+        let _ = field.self_values(&charges, &mut at_centres);
+        if let Ok(view) = InterpolantView::new(kernel, &centres, weights, 0.0, [0.0; 3]) {
+            let accuracy = f64::from(head[0]) * 1e-3;
+            let evaluator = rbf_far::Evaluator::new(view, &targets, accuracy);
+            let _ = evaluator.values(&targets, &mut out);
+        }
+    }
+}

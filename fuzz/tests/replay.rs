@@ -16,7 +16,7 @@ fn replay(target: &str, run: fn(&[u8])) -> usize {
 
 #[test]
 fn every_corpus_replays_without_a_panic() {
-    let targets: [(&str, fn(&[u8])); 11] = [
+    let targets: [(&str, fn(&[u8])); 12] = [
         ("obj", rbf_fuzz::obj),
         ("ply", rbf_fuzz::ply),
         ("stl", rbf_fuzz::stl),
@@ -28,6 +28,7 @@ fn every_corpus_replays_without_a_panic() {
         ("evaluate", rbf_fuzz::evaluate),
         ("polygonize", rbf_fuzz::polygonize),
         ("voxelize", rbf_fuzz::voxelize),
+        ("far_field", rbf_fuzz::far_field),
     ];
     for (name, run) in targets {
         assert!(replay(name, run) > 0, "the {name} corpus is empty");

@@ -334,7 +334,8 @@ impl<const D: usize> FarField<D> {
         let theta2 = self.settings.theta * self.settings.theta;
         let mut near: Vec<(usize, usize)> = Vec::new();
         let mut far = Vec::new();
-        let mut stack = vec![0];
+        // The root, unless there are no centres at all.
+        let mut stack: Vec<usize> = (0..self.tree.nodes.len().min(1)).collect();
         while let Some(n) = stack.pop() {
             let node = &self.tree.nodes[n];
             let direct = match (&self.grids[n], node.children) {

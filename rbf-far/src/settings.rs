@@ -56,14 +56,16 @@ impl FarFieldSettings {
     /// assert!(s.order_for(1.0, 1e-9) >= 2);
     /// ```
     pub fn order_for(&self, root_side: f64, side: f64) -> usize {
+        // Interpolation takes two points at least, whatever was asked.
+        let order = self.order.max(2);
         let x0 = 1.0 + 2.0 / self.theta;
         let rho = x0 + (x0 * x0 - 1.0).sqrt();
         let ratio = (root_side / side).powi(3);
         if !(ratio.is_finite() && ratio >= 1.0) {
-            return self.order;
+            return order;
         }
         let fewer = ratio.ln() / rho.ln();
-        ((self.order as f64 - fewer).ceil() as usize).clamp(2, self.order)
+        ((order as f64 - fewer).ceil() as usize).clamp(2, order)
     }
 
     /// Chebyshev points along each side of the box [lo, hi].

@@ -263,3 +263,39 @@ fn wrong_lengths_and_foreign_charges_are_refused() {
         "gradients"
     );
 }
+
+/// Found by the far_field fuzz target: a field of no centres evaluated somewhere panicked
+/// (the root of an empty tree); it sums to zero, like the direct view. Odd settings (order 0,
+/// θ = 0, leaves of 0) are taken too.
+#[test]
+fn an_empty_field_and_odd_settings_evaluate_without_panicking() {
+    let targets = [[0.5, -1.0, 2.0], [0.0; 3]];
+    let (mut v, mut g) = (vec![1.0; 2], vec![[1.0; 3]; 2]);
+    let empty = FarField::new(Kernel::Cubic, &[], &FarFieldSettings::default());
+    let charges = empty.charges(&[]).unwrap();
+    empty.values(&charges, &targets, &mut v).unwrap();
+    assert_eq!(v, [0.0, 0.0]);
+    empty
+        .values_and_gradients(&charges, &targets, &mut v, &mut g)
+        .unwrap();
+    assert_eq!(g, [[0.0; 3]; 2]);
+    let centres = cloud(Cloud::Random, 300, 7);
+    let w = weights(300, 7);
+    let odd = FarFieldSettings {
+        order: 0,
+        theta: 0.0,
+        leaf: 0,
+        target_leaf: 0,
+    };
+    let field = FarField::new(Kernel::Cubic, &centres, &odd);
+    let charges = field.charges(&w).unwrap();
+    field.values(&charges, &targets, &mut v).unwrap();
+    let mut exact = vec![0.0; 2];
+    InterpolantView::new(Kernel::Cubic, &centres, &w, 0.0, [0.0; 3])
+        .unwrap()
+        .values(&targets, &mut exact)
+        .unwrap();
+    for (a, b) in v.iter().zip(&exact) {
+        assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} against {b}");
+    }
+}
