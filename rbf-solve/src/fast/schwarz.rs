@@ -6,8 +6,10 @@
 //! overlapping subdomain of its nearest rows, whose small saddle-point system (kernel block,
 //! polynomial block) is factored once. A residual is solved on every subdomain at once and each
 //! keeps the weights of its own leaf only (restricted additive Schwarz). Coarse level: a spread
-//! subset of the rows, with the whole affine part, solves what the fine level left behind there
-//! (multiplicative between the levels), and supplies the polynomial.
+//! subset of the rows, with the whole affine part, solves the residual first, then what the
+//! fine level left behind at its rows (multiplicative between the levels, symmetric: one
+//! iteration fewer on 10⁵ rows of the peers' problem, 8 instead of 9), and supplies the
+//! polynomial.
 
 use faer::{Mat, Par};
 
@@ -212,27 +214,53 @@ impl Schwarz {
         let points = system.normalized_points();
         let n = points.len();
         let mut z = vec![0.0; n + D + 1];
+        let coarse = &self.coarse;
+        // Pre-step on the coarse level: the global part first, so that the subdomains solve
+        // only what it leaves (its weights sit on few rows: evaluating them everywhere is cheap).
+        let mut h_fine = h.to_vec();
+        if !coarse.rows.is_empty() {
+            let hc: Vec<f64> = coarse.rows.iter().map(|&i| h[i]).collect();
+            let y = coarse.solve(&hc, g);
+            let centres: Vec<[f64; D]> = coarse.rows.iter().map(|&i| points[i]).collect();
+            let linear: [f64; D] = core::array::from_fn(|d| y[coarse.keep + 1 + d]);
+            let mut fy = vec![0.0; n];
+            if let Ok(view) = InterpolantView::new(
+                system.kernel(),
+                &centres,
+                &y[..coarse.keep],
+                y[coarse.keep],
+                linear,
+            ) {
+                let _ = view.par_values(points, &mut fy);
+            }
+            for (k, &i) in coarse.rows.iter().enumerate() {
+                z[i] = y[k];
+                fy[i] += system.normalized_smoothing(i) * y[k];
+            }
+            z[n..].copy_from_slice(&y[coarse.keep..]);
+            h_fine.iter_mut().zip(&fy).for_each(|(a, b)| *a -= b);
+        }
         let parts: Vec<Vec<f64>> = self
             .fine
             .par_iter()
             .map(|local| {
-                let hl: Vec<f64> = local.rows.iter().map(|&i| h[i]).collect();
+                let hl: Vec<f64> = local.rows.iter().map(|&i| h_fine[i]).collect();
                 local.solve(&hl, &vec![0.0; local.poly])
             })
             .collect();
         for (local, part) in self.fine.iter().zip(&parts) {
             for (&i, &v) in local.rows[..local.keep].iter().zip(part) {
-                z[i] = v;
+                z[i] += v;
             }
         }
-        let coarse = &self.coarse;
         if coarse.rows.is_empty() {
             return z;
         }
         // What the fine weights leave at the coarse rows, and of the moment conditions.
         let targets: Vec<[f64; D]> = coarse.rows.iter().map(|&i| points[i]).collect();
         let mut fz = vec![0.0; targets.len()];
-        let view = InterpolantView::new(system.kernel(), points, &z[..n], 0.0, [0.0; D]);
+        let linear: [f64; D] = core::array::from_fn(|d| z[n + 1 + d]);
+        let view = InterpolantView::new(system.kernel(), points, &z[..n], z[n], linear);
         if let Ok(view) = view {
             let _ = view.par_values(&targets, &mut fz);
         }
@@ -253,7 +281,10 @@ impl Schwarz {
         for (k, &i) in coarse.rows.iter().enumerate() {
             z[i] += y[k];
         }
-        z[n..].copy_from_slice(&y[coarse.keep..]);
+        z[n..]
+            .iter_mut()
+            .zip(&y[coarse.keep..])
+            .for_each(|(a, b)| *a += b);
         z
     }
 }
