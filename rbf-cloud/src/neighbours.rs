@@ -1,0 +1,95 @@
+//! Each point's k nearest other points, found once through one k-d tree (kiddo's
+//! `ImmutableKdTree`) on every core.
+
+use std::num::NonZero;
+
+use kiddo::{ImmutableKdTree, SquaredEuclidean};
+use rayon::prelude::*;
+
+/// The k nearest other points of every point, nearest first.
+#[derive(Clone, Debug)]
+pub struct Neighbours {
+    k: usize,
+    /// Row i: the indices of point i's neighbours (k per row).
+    indices: Vec<u32>,
+    /// Row i: their distances.
+    distances: Vec<f64>,
+}
+
+impl Neighbours {
+    /// The `k` nearest other points of each of `points` (fewer when there are not that many
+    /// other points: then every other point). Coincident points are neighbours at distance 0.
+    ///
+    /// ```
+    /// use rbf_cloud::Neighbours;
+    /// let points = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [3.0, 0.0, 0.0]];
+    /// let near = Neighbours::new(&points, 1);
+    /// assert_eq!(near.of(2), &[1]);
+    /// assert_eq!(near.distances_of(2), &[2.0]);
+    /// ```
+    pub fn new(points: &[[f64; 3]], k: usize) -> Self {
+        let k = k.min(points.len().saturating_sub(1));
+        let Some(wanted) = NonZero::new(k + 1) else {
+            return Self {
+                k: 0,
+                indices: Vec::new(),
+                distances: Vec::new(),
+            };
+        };
+        let tree: ImmutableKdTree<f64, 3> = ImmutableKdTree::new_from_slice(points);
+        let rows: Vec<(Vec<u32>, Vec<f64>)> = points
+            .par_iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let found = tree.nearest_n::<SquaredEuclidean>(p, wanted);
+                // The point itself is among them (at distance 0, maybe behind a duplicate).
+                let mut row: Vec<(u32, f64)> = found
+                    .into_iter()
+                    .filter(|n| n.item as usize != i)
+                    .map(|n| (n.item as u32, n.distance.sqrt()))
+                    .collect();
+                row.truncate(k);
+                row.into_iter().unzip()
+            })
+            .collect();
+        let mut indices = Vec::with_capacity(points.len() * k);
+        let mut distances = Vec::with_capacity(points.len() * k);
+        for (i, d) in rows {
+            // A row short of k (the point itself was not returned among equals) is padded with
+            // its last neighbour, so that every row has k entries.
+            let last = (*i.last().unwrap_or(&0), *d.last().unwrap_or(&0.0));
+            indices.extend(i.iter().copied().chain(std::iter::repeat(last.0)).take(k));
+            distances.extend(d.iter().copied().chain(std::iter::repeat(last.1)).take(k));
+        }
+        Self {
+            k,
+            indices,
+            distances,
+        }
+    }
+
+    /// Neighbours per point.
+    pub fn k(&self) -> usize {
+        self.k
+    }
+
+    /// The neighbours of point i, nearest first.
+    pub fn of(&self, i: usize) -> &[u32] {
+        &self.indices[i * self.k..(i + 1) * self.k]
+    }
+
+    /// Their distances.
+    pub fn distances_of(&self, i: usize) -> &[f64] {
+        &self.distances[i * self.k..(i + 1) * self.k]
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        self.indices.len().checked_div(self.k).unwrap_or(0)
+    }
+
+    /// Whether there are no rows (fewer than two points).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}

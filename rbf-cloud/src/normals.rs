@@ -1,0 +1,56 @@
+//! Normals from local planes: the direction of least spread of each point's neighbourhood
+//! (the eigenvector of the smallest eigenvalue of its covariance; Hoppe et al. 1992). Their
+//! sign is arbitrary here; `orient_normals` makes them consistent.
+
+use nalgebra::Matrix3;
+use rayon::prelude::*;
+
+use crate::Neighbours;
+
+/// A unit normal at every point, from the point and its neighbours (unoriented). A
+/// neighbourhood with no spread at all (every neighbour coincident) gets [0, 0, 0].
+///
+/// ```
+/// use rbf_cloud::{Neighbours, estimate_normals};
+/// let points: Vec<[f64; 3]> = (0..50).map(|i| [(i % 7) as f64, (i / 7) as f64, 2.0]).collect();
+/// let normals = estimate_normals(&points, &Neighbours::new(&points, 8));
+/// assert!(normals.iter().all(|n| n[2].abs() > 0.999));
+/// ```
+pub fn estimate_normals(points: &[[f64; 3]], neighbours: &Neighbours) -> Vec<[f64; 3]> {
+    (0..points.len())
+        .into_par_iter()
+        .map(|i| {
+            let near = neighbours.of(i);
+            let count = (near.len() + 1) as f64;
+            let members =
+                || std::iter::once(&points[i]).chain(near.iter().map(|&j| &points[j as usize]));
+            let mut centre = [0.0; 3];
+            for p in members() {
+                (0..3).for_each(|d| centre[d] += p[d] / count);
+            }
+            let mut covariance = Matrix3::<f64>::zeros();
+            for p in members() {
+                let q = [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]];
+                for r in 0..3 {
+                    for c in 0..3 {
+                        covariance[(r, c)] += q[r] * q[c];
+                    }
+                }
+            }
+            if covariance.iter().all(|v| *v == 0.0) || !covariance.iter().all(|v| v.is_finite()) {
+                return [0.0; 3];
+            }
+            let eigen = covariance.symmetric_eigen();
+            let smallest = (0..3)
+                .min_by(|&a, &b| eigen.eigenvalues[a].total_cmp(&eigen.eigenvalues[b]))
+                .unwrap_or(0);
+            let v = eigen.eigenvectors.column(smallest);
+            let length = v.norm();
+            if length > 0.0 {
+                [v[0] / length, v[1] / length, v[2] / length]
+            } else {
+                [0.0; 3]
+            }
+        })
+        .collect()
+}
