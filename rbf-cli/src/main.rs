@@ -22,6 +22,7 @@ mod gallery;
 mod info;
 mod mesh;
 mod plot;
+mod reconstruct;
 mod render;
 mod sculpt;
 mod studio;
@@ -71,6 +72,9 @@ enum Command {
     /// Convert a polygon mesh to an implicit surface model.
     #[command(after_help = convert::HELP)]
     Convert(convert::ConvertArgs),
+    /// Reconstruct a closed surface from a scan (a point cloud, normals optional).
+    #[command(after_help = reconstruct::HELP)]
+    Reconstruct(reconstruct::ReconstructArgs),
     /// Measure how far a model's surface lies from a mesh, both ways (mean, RMS, Hausdorff).
     #[command(after_help = compare::HELP)]
     Compare(compare::CompareArgs),
@@ -171,6 +175,7 @@ fn main() -> ExitCode {
         Command::Eval(args) => eval::run(&args),
         Command::Check(args) => check::run(&args),
         Command::Convert(args) => convert::run(&args, cli.quiet, cli.verbose),
+        Command::Reconstruct(args) => reconstruct::run(&args, cli.quiet),
         Command::Compare(args) => compare::run(&args, cli.quiet),
         Command::Mesh(args) => mesh::run(&args, cli.quiet),
         Command::Voxelize(args) => voxelize::run(&args, cli.quiet),

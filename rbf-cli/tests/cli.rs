@@ -1880,3 +1880,63 @@ fn bad_scans_are_refused_naming_the_culprit() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("cut.ply"), "{}", stderr(&o));
 }
+
+/// `rbf reconstruct`: a torus scanned without normals (an .xyz file) becomes a watertight mesh
+/// of genus 1 with the model beside it; a flat cloud is refused and nothing is written.
+#[test]
+fn reconstruct_a_cloud_without_normals_and_refuse_a_flat_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let golden = 0.5 * (5f64.sqrt() - 1.0);
+    let text: String = (0..3000)
+        .map(|i| {
+            let u = std::f64::consts::TAU * i as f64 / 3000.0;
+            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
+            let r = 1.0 + 0.4 * v.cos();
+            format!("{} {} {}\n", r * u.cos(), r * u.sin(), 0.4 * v.sin())
+        })
+        .collect();
+    let cloud = write(dir.path(), "torus.xyz", &text);
+    let mesh = dir.path().join("torus.obj");
+    let model = dir.path().join("torus.json");
+    let o = rbf(
+        &[
+            "reconstruct",
+            cloud.to_str().unwrap(),
+            "-o",
+            mesh.to_str().unwrap(),
+            "--model",
+            model.to_str().unwrap(),
+            "--resolution",
+            "64",
+        ],
+        None,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let said = stderr(&o);
+    assert!(
+        said.contains("3000 points read") && said.contains("normals estimated"),
+        "{said}"
+    );
+    assert!(
+        said.contains("watertight, genus 1, 1 component(s)"),
+        "{said}"
+    );
+    assert!(mesh.exists() && model.exists());
+    let flat: String = (0..400)
+        .map(|i| format!("{} {} 0\n", i % 20, i / 20))
+        .collect();
+    let cloud = write(dir.path(), "flat.xyz", &flat);
+    let out = dir.path().join("flat.obj");
+    let o = rbf(
+        &[
+            "reconstruct",
+            cloud.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("lie on a plane"), "{}", stderr(&o));
+    assert!(!out.exists());
+}

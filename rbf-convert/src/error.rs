@@ -8,6 +8,33 @@ use rbf_mesh::MeshError;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ConvertError {
+    /// Too few points to reconstruct a surface from.
+    #[error("{points} point(s) after dropping outliers: a surface needs at least {needed}")]
+    TooFewPoints {
+        /// Points left.
+        points: usize,
+        /// The least accepted.
+        needed: usize,
+    },
+    /// The points span no volume: they lie on a plane, a line or one point.
+    #[error(
+        "the points lie on a {shape}: a closed surface needs points around a volume (an open scan of one side of an object cannot be closed from them)"
+    )]
+    Flat {
+        /// "plane", "line" or "point".
+        shape: &'static str,
+    },
+    /// The function fitted to a scan is not negative all around it, so its zero set does not
+    /// close around the points (seen on scans noisier than about 0.3% of their size).
+    #[error(
+        "the surface fitted to the scan does not close around it (f = {value:.3e} ≥ 0 outside, at {at:?}): the scan is too noisy or too sparse for this fit; try a larger --tolerance"
+    )]
+    NotClosed {
+        /// Where f was found non-negative.
+        at: [f64; 3],
+        /// f there.
+        value: f64,
+    },
     /// No vertex has a usable normal.
     #[error("no vertex of the mesh has a usable normal (all faces degenerate?)")]
     NoNormals,

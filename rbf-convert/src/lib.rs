@@ -36,6 +36,7 @@ mod nearest;
 mod normals;
 mod poisson;
 mod polish;
+mod reconstruct;
 mod settings;
 mod topology;
 
@@ -46,5 +47,6 @@ pub use iterative::{IterationReport, IterativeReport, convert_iterative, convert
 pub use normals::{NormalReport, NormalSettings, convert_normals};
 #[doc(hidden)]
 pub use poisson::poisson_subset;
+pub use reconstruct::{ReconstructReport, ReconstructSettings, reconstruct};
 pub use settings::IterativeSettings;
 pub use topology::TopologyReport;

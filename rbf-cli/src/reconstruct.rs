@@ -1,0 +1,210 @@
+//! `rbf reconstruct`: a scan (a point cloud, with or without normals) to a closed mesh, and
+//! optionally the model behind it.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::Args;
+use rbf_convert::{ReconstructSettings, reconstruct};
+use rbf_mesh::{
+    PointCloud, PolygonizeSettings, Resolution, polygonize_continuation, surface_seeds, write_mesh,
+};
+
+use crate::common::{read_text, spinner, write_atomically};
+use crate::failure::{BAD_INPUT, Failure, USAGE};
+
+pub(crate) const HELP: &str = "\
+Outliers are dropped (a mean distance to the 20 nearest points more than 2.5 deviations above
+the cloud's), normals estimated from local planes where the cloud has none (16 neighbours) and
+every normal oriented consistently and outward (a minimum spanning tree of the neighbour graph;
+given normals are checked the same way and flipped ones fixed). A subset of the points chosen
+greedily then carries normal constraints until the surface passes within the tolerance of
+every point: three times the noise the points show about their local planes unless given, so
+a clean scan is followed closely and a noisy one smoothly. Holes are closed by the implicit
+surface itself. The mesh is polygonized with cubes about one point spacing wide (thin parts
+keep their topology).
+
+Clouds: .ply (ASCII or binary, with or without nx ny nz), .npy (N × 3 or N × 6), .xyz or .txt
+(x y z or x y z nx ny nz per line). Meshes out: .obj, .ply, .stl.
+
+Examples:
+  rbf reconstruct scan.ply -o surface.obj
+  rbf reconstruct scan.xyz -o surface.ply --model scan.json --resolution 256
+  rbf reconstruct noisy.npy -o smooth.stl --tolerance 0.005";
+
+#[derive(Args, Debug)]
+pub(crate) struct ReconstructArgs {
+    /// Point cloud: .ply, .npy, .xyz or .txt.
+    cloud: PathBuf,
+    /// Mesh to write: .obj, .ply or .stl.
+    #[arg(short, long, value_name = "MESH")]
+    output: PathBuf,
+    /// Also write the fitted model (JSON, as `rbf fit` writes).
+    #[arg(long, value_name = "MODEL")]
+    model: Option<PathBuf>,
+    /// Cubes across the longest side [default: from the points' spacing, 96 to 384].
+    #[arg(long, value_name = "N")]
+    resolution: Option<usize>,
+    /// How far the surface may pass from a point, as a fraction of the box's longest side
+    /// [default: three times the measured noise, at least 2.5e-3].
+    #[arg(long, value_name = "T")]
+    tolerance: Option<f64>,
+    /// The most points that carry constraints.
+    #[arg(long, value_name = "N", default_value_t = 5000)]
+    max_centres: usize,
+    /// Keep every point (no outlier removal).
+    #[arg(long)]
+    keep_outliers: bool,
+}
+
+pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
+    let source = args.cloud.display().to_string();
+    if let Some(t) = args.tolerance
+        && !(t > 0.0 && t.is_finite())
+    {
+        return Err(Failure::new(
+            USAGE,
+            format!("--tolerance {t}: the tolerance must be a finite number > 0"),
+        ));
+    }
+    if args.max_centres < 10 {
+        return Err(Failure::new(
+            USAGE,
+            format!("--max-centres {}: at least 10", args.max_centres),
+        ));
+    }
+    let start = Instant::now();
+    let PointCloud {
+        positions: points,
+        normals,
+    } = read_cloud(&args.cloud)?;
+    let settings = ReconstructSettings {
+        tolerance: args.tolerance,
+        max_centres: args.max_centres,
+        outlier_ratio: (!args.keep_outliers).then_some(2.5),
+        ..Default::default()
+    };
+    let bar = spinner(quiet, format!("{}: reconstructing", points.len()));
+    let result = reconstruct(&points, normals.as_deref(), &settings);
+    bar.finish_and_clear();
+    let (model, report) = result.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
+    let resolution = args
+        .resolution
+        .unwrap_or_else(|| resolution_from_spacing(&points));
+    let polygonize = PolygonizeSettings {
+        resolution: Resolution::Cells(resolution),
+        ..Default::default()
+    };
+    let bar = spinner(quiet, format!("polygonizing at {resolution}"));
+    let meshed = polygonize_continuation(
+        &model.interpolant.view(),
+        &surface_seeds(&model),
+        &polygonize,
+    );
+    bar.finish_and_clear();
+    let (mesh, _) = meshed.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
+    write_mesh(&args.output, &mesh).map_err(|e| Failure::mesh(&e))?;
+    if let Some(path) = &args.model {
+        write_atomically(path, model.to_json().as_bytes())?;
+    }
+    if !quiet {
+        let r = mesh.check();
+        eprintln!(
+            "{} points read, {} outliers dropped, normals {} ({} flipped, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}; {} triangles at {}, {}, genus {}, {} component(s); {:.2} s; wrote {}",
+            report.points,
+            report.outliers,
+            if report.normals_estimated {
+                "estimated"
+            } else {
+                "given"
+            },
+            report.flipped,
+            report.pieces,
+            report.noise,
+            report.tolerance,
+            report.centres,
+            report.largest_miss,
+            if report.within_tolerance {
+                ""
+            } else {
+                " (above the tolerance: the centre budget ran out; raise --max-centres)"
+            },
+            r.triangles,
+            resolution,
+            if r.is_watertight() {
+                "watertight"
+            } else {
+                "open"
+            },
+            r.genus.map_or("-".into(), |g| g.to_string()),
+            r.components,
+            start.elapsed().as_secs_f64(),
+            args.output.display()
+        );
+    }
+    Ok(())
+}
+
+/// Points and their normals (when the file has them).
+fn read_cloud(path: &Path) -> Result<PointCloud, Failure> {
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("xyz" | "txt") => {
+            let text = read_text(path)?;
+            let columns = text
+                .lines()
+                .map(str::trim)
+                .find(|l| !l.is_empty() && !l.starts_with('#'))
+                .map_or(3, |l| {
+                    l.split(|c: char| c.is_whitespace() || c == ',')
+                        .filter(|w| !w.is_empty())
+                        .count()
+                });
+            let bad = |e: rbf_core::ParseError| {
+                Failure::new(BAD_INPUT, format!("{}: {e}", path.display()))
+            };
+            if columns == 6 {
+                let rows = rbf_core::parse_points::<6>(&text).map_err(bad)?;
+                Ok(PointCloud {
+                    positions: rows.iter().map(|r| [r[0], r[1], r[2]]).collect(),
+                    normals: Some(rows.iter().map(|r| [r[3], r[4], r[5]]).collect()),
+                })
+            } else {
+                Ok(PointCloud {
+                    positions: rbf_core::parse_points::<3>(&text).map_err(bad)?,
+                    normals: None,
+                })
+            }
+        }
+        _ => rbf_mesh::read_point_cloud(path).map_err(|e| Failure::mesh(&e)),
+    }
+}
+
+/// Cubes one median spacing of the points wide along the box's longest side, 96 to 384.
+fn resolution_from_spacing(points: &[[f64; 3]]) -> usize {
+    let near = rbf_cloud::Neighbours::new(points, 1);
+    let mut spacing: Vec<f64> = (0..near.len()).map(|i| near.distances_of(i)[0]).collect();
+    if spacing.is_empty() {
+        return 128;
+    }
+    let mid = spacing.len() / 2;
+    spacing.select_nth_unstable_by(mid, f64::total_cmp);
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    let longest = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    let cells = longest / spacing[mid].max(f64::MIN_POSITIVE);
+    if cells.is_finite() {
+        (cells as usize).clamp(96, 384)
+    } else {
+        128
+    }
+}

@@ -1,0 +1,376 @@
+//! Scans to implicit surfaces: a point cloud, with or without normals, noisy, with holes and a
+//! few outliers, becomes a model whose zero set is a closed surface near the points. Outliers
+//! are dropped (statistically), normals estimated from local planes where the cloud has none,
+//! and all of them oriented consistently and outward (rbf-cloud); then a subset of the points
+//! chosen greedily carries normal constraints until the surface passes within a tolerance of
+//! every point, the tolerance set from the noise the points show about their local planes
+//! (three times it): a clean scan is interpolated closely, a noisy one approximated smoothly.
+//! Holes close by themselves: the implicit function is defined everywhere.
+
+use rbf_cloud::{Neighbours, estimate_normals, orient_normals, statistical_outliers};
+use rbf_core::{Constraint, FitSettings, Model, NormalOffset};
+
+use crate::ConvertError;
+
+/// The fewest points a surface is reconstructed from.
+const FEWEST_POINTS: usize = 10;
+
+/// Noise (as a fraction of the box's longest side) above which points are moved onto their
+/// local planes before fitting.
+const SMOOTH_ABOVE: f64 = 1e-3;
+
+/// Points the greedy fit chooses from, at most (an even spread of a denser scan).
+const THINNED: usize = 20_000;
+
+/// The smallest default tolerance, as a fraction of the box's longest side: what a budget of
+/// a few thousand centres can meet on a detailed scan.
+const MIN_TOLERANCE: f64 = 2.5e-3;
+
+/// Settings of [`reconstruct`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReconstructSettings {
+    /// Neighbours of each point for its normal and its noise: 16.
+    pub neighbours: usize,
+    /// Drop points whose mean distance to their 20 nearest neighbours exceeds the cloud's mean
+    /// by this many standard deviations: 2.5; `None` keeps every point.
+    pub outlier_ratio: Option<f64>,
+    /// How far the surface may pass from a point, as a fraction of the box's longest side;
+    /// `None` (the default): three times the noise measured about the local planes, and at
+    /// least 2.5e-3.
+    pub tolerance: Option<f64>,
+    /// The most points that carry constraints: 5000.
+    pub max_centres: usize,
+    /// Offset of the normal constraints: 1% of the box's longest side, and at least four
+    /// times the measured noise.
+    pub offset: NormalOffset,
+}
+
+impl Default for ReconstructSettings {
+    fn default() -> Self {
+        Self {
+            neighbours: 16,
+            outlier_ratio: Some(2.5),
+            tolerance: None,
+            max_centres: 5000,
+            offset: NormalOffset::Relative(0.01),
+        }
+    }
+}
+
+/// What [`reconstruct`] did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReconstructReport {
+    /// Points given.
+    pub points: usize,
+    /// Points dropped as outliers.
+    pub outliers: usize,
+    /// Whether the normals were estimated (the cloud had none).
+    pub normals_estimated: bool,
+    /// Normals (given or estimated) whose sign the orientation reversed.
+    pub flipped: usize,
+    /// Connected pieces of the neighbour graph.
+    pub pieces: usize,
+    /// The noise measured: the median over points of the RMS residual of a quadratic height
+    /// function fitted to their neighbourhood, as a fraction of the box's longest side.
+    pub noise: f64,
+    /// The tolerance used, as a fraction of the box's longest side.
+    pub tolerance: f64,
+    /// Points that carry constraints.
+    pub centres: usize,
+    /// The largest distance from the surface to any kept point, as a fraction of the box's
+    /// longest side, and whether it is within the tolerance.
+    pub largest_miss: f64,
+    /// Whether every kept point is within the tolerance.
+    pub within_tolerance: bool,
+}
+
+/// Reconstructs a closed implicit surface from `points` (and their `normals`, when the scan
+/// has them: used after their signs are checked).
+///
+/// ```
+/// use rbf_convert::{ReconstructSettings, reconstruct};
+/// // 800 points on a sphere of radius 2, no normals.
+/// let points: Vec<[f64; 3]> = (0..800)
+///     .map(|i| {
+///         let z = 1.0 - (2 * i + 1) as f64 / 800.0;
+///         let t = 2.399963 * i as f64;
+///         let s = (1.0 - z * z).sqrt();
+///         [2.0 * s * t.cos(), 2.0 * s * t.sin(), 2.0 * z]
+///     })
+///     .collect();
+/// let (model, report) = reconstruct(&points, None, &ReconstructSettings::default()).unwrap();
+/// assert!(report.normals_estimated && report.within_tolerance);
+/// let f = model.interpolant.view();
+/// assert!(f.value(&[0.0; 3]) > 0.0 && f.value(&[3.0, 0.0, 0.0]) < 0.0);
+/// // The surface crosses the y axis within 0.03 of the sphere (the tolerance: 2.5e-3 of 4).
+/// assert!(f.value(&[0.0, 1.97, 0.0]) > 0.0 && f.value(&[0.0, 2.03, 0.0]) < 0.0);
+/// ```
+pub fn reconstruct(
+    points: &[[f64; 3]],
+    normals: Option<&[[f64; 3]]>,
+    settings: &ReconstructSettings,
+) -> Result<(Model<3>, ReconstructReport), ConvertError> {
+    if points.len() < FEWEST_POINTS {
+        return Err(ConvertError::TooFewPoints {
+            points: points.len(),
+            needed: FEWEST_POINTS,
+        });
+    }
+    // Outliers first: they would bend normals and the surface alike.
+    let keep: Vec<usize> = match settings.outlier_ratio {
+        Some(ratio) => {
+            let flags = statistical_outliers(&Neighbours::new(points, 20), ratio);
+            (0..points.len()).filter(|&i| !flags[i]).collect()
+        }
+        None => (0..points.len()).collect(),
+    };
+    if keep.len() < FEWEST_POINTS {
+        return Err(ConvertError::TooFewPoints {
+            points: keep.len(),
+            needed: FEWEST_POINTS,
+        });
+    }
+    let kept: Vec<[f64; 3]> = keep.iter().map(|&i| points[i]).collect();
+    if let Some(shape) = flatness(&kept) {
+        return Err(ConvertError::Flat { shape });
+    }
+    let near = Neighbours::new(&kept, settings.neighbours.max(3));
+    let (unoriented, estimated) = match normals {
+        Some(given) if given.len() == points.len() => {
+            (keep.iter().map(|&i| unit(given[i])).collect(), false)
+        }
+        _ => (estimate_normals(&kept, &near), true),
+    };
+    let oriented = orient_normals(&kept, &unoriented, &near);
+    let longest = longest_side(&kept);
+    let noise = median_quadric_residual(&kept, &oriented.normals, &near) / longest;
+    let tolerance = settings
+        .tolerance
+        .unwrap_or_else(|| (3.0 * noise).max(MIN_TOLERANCE));
+    // The offset points must lie beyond the noise, or the inside and outside constraints of
+    // neighbouring points cross.
+    let offset = match settings.offset {
+        NormalOffset::Relative(r) => NormalOffset::Relative(r.max(4.0 * noise)),
+        other => other,
+    };
+    // Noise above what a clean scan's curvature shows: each point moves onto the plane of its
+    // neighbourhood (its centroid and normal), which averages the noise across the plane away.
+    let smoothed: Vec<[f64; 3]> = if noise > SMOOTH_ABOVE {
+        project_onto_local_planes(&kept, &oriented.normals, &near)
+    } else {
+        kept.clone()
+    };
+    // Dense scans are thinned to an even spread first: constraints closer than the scan's
+    // detail only make the fits ill-conditioned.
+    let spread = crate::poisson_subset(&smoothed, THINNED);
+    let constraints: Vec<Constraint<3>> = spread
+        .iter()
+        .map(|&i| (smoothed[i], oriented.normals[i]))
+        .filter(|(_, n)| n.iter().any(|&c| c != 0.0))
+        .map(|(p, n)| Constraint::normal(p, n))
+        .collect();
+    let fit_settings = FitSettings {
+        normal_offset: offset,
+        ..Default::default()
+    };
+    let greedy = rbf_solve::GreedySettings {
+        tolerance,
+        max_constraints: settings.max_centres,
+        ..Default::default()
+    };
+    let (fit, report) = rbf_solve::fit_greedy(&constraints, &fit_settings, &greedy, |_| {})?;
+    let largest_miss = report.rounds.last().map_or(f64::NAN, |r| r.max_error);
+    // Outside means negative: check the corners of the box grown by a fifth of its side.
+    let (lo, hi) = bounds(&kept);
+    let view = fit.interpolant.view();
+    for corner in 0..8 {
+        let at: [f64; 3] = core::array::from_fn(|d| {
+            let pad = 0.2 * (hi[d] - lo[d]).max(0.2 * longest);
+            if corner >> d & 1 == 1 {
+                hi[d] + pad
+            } else {
+                lo[d] - pad
+            }
+        });
+        let value = view.value(&at);
+        if !(value < 0.0) {
+            return Err(ConvertError::NotClosed { at, value });
+        }
+    }
+    let summary = ReconstructReport {
+        points: points.len(),
+        outliers: points.len() - kept.len(),
+        normals_estimated: estimated,
+        flipped: oriented.flipped,
+        pieces: oriented.components,
+        noise,
+        tolerance,
+        centres: report.used.len(),
+        largest_miss,
+        within_tolerance: report.converged,
+    };
+    let model = Model {
+        constraints: report.constraints,
+        settings: fit_settings,
+        interpolant: fit.interpolant,
+        report: Some(fit.report),
+    };
+    Ok((model, summary))
+}
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if l > 0.0 && l.is_finite() {
+        [v[0] / l, v[1] / l, v[2] / l]
+    } else {
+        [0.0; 3]
+    }
+}
+
+fn bounds(points: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    (lo, hi)
+}
+
+fn longest_side(points: &[[f64; 3]]) -> f64 {
+    let (lo, hi) = bounds(points);
+    (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max)
+}
+
+/// "plane", "line" or "point" when the points' spread across some direction is below 1e-9 of
+/// their spread along the widest one.
+fn flatness(points: &[[f64; 3]]) -> Option<&'static str> {
+    if points.iter().all(|p| *p == points[0]) {
+        return Some("point");
+    }
+    let n = points.len() as f64;
+    let mut c = [0.0; 3];
+    for p in points {
+        (0..3).for_each(|d| c[d] += p[d] / n);
+    }
+    let mut m = nalgebra::Matrix3::<f64>::zeros();
+    for p in points {
+        let q = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+        for r in 0..3 {
+            for s in 0..3 {
+                m[(r, s)] += q[r] * q[s];
+            }
+        }
+    }
+    let mut e: Vec<f64> = m
+        .symmetric_eigenvalues()
+        .iter()
+        .map(|v| v.max(0.0))
+        .collect();
+    e.sort_by(f64::total_cmp);
+    let widest = e[2];
+    let flat = |v: f64| v <= 1e-18 * widest;
+    if !(widest > 0.0) {
+        Some("point")
+    } else if flat(e[1]) {
+        Some("line")
+    } else if flat(e[0]) {
+        Some("plane")
+    } else {
+        None
+    }
+}
+
+/// Each point moved onto the plane through its neighbourhood's centroid with its normal.
+fn project_onto_local_planes(
+    points: &[[f64; 3]],
+    normals: &[[f64; 3]],
+    near: &Neighbours,
+) -> Vec<[f64; 3]> {
+    (0..points.len())
+        .map(|i| {
+            let others = near.of(i);
+            let count = (others.len() + 1) as f64;
+            let mut c = points[i];
+            for &j in others {
+                (0..3).for_each(|d| c[d] += points[j as usize][d]);
+            }
+            let c = [c[0] / count, c[1] / count, c[2] / count];
+            let (p, n) = (points[i], normals[i]);
+            let height = (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1] + (p[2] - c[2]) * n[2];
+            [
+                p[0] - height * n[0],
+                p[1] - height * n[1],
+                p[2] - height * n[2],
+            ]
+        })
+        .collect()
+}
+
+/// The noise of a scan: the median over points of the RMS residual of a quadratic height
+/// function fitted to the point's neighbourhood over its tangent plane (a plane would count
+/// the surface's curvature as noise; a quadric takes it out).
+fn median_quadric_residual(points: &[[f64; 3]], normals: &[[f64; 3]], near: &Neighbours) -> f64 {
+    let mut rms: Vec<f64> = (0..points.len())
+        .filter_map(|i| {
+            let (p, n) = (points[i], normals[i]);
+            let others = near.of(i);
+            if others.len() < 8 || n.iter().all(|&c| c == 0.0) {
+                return None;
+            }
+            // A tangent frame (t1, t2, n).
+            let helper = if n[0].abs() < 0.9 {
+                [1.0, 0.0, 0.0]
+            } else {
+                [0.0, 1.0, 0.0]
+            };
+            let t1 = normalized(cross(n, helper));
+            let t2 = cross(n, t1);
+            let rows: Vec<[f64; 3]> = std::iter::once(p)
+                .chain(others.iter().map(|&j| points[j as usize]))
+                .map(|q| {
+                    let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+                    [dot(d, t1), dot(d, t2), dot(d, n)]
+                })
+                .collect();
+            let a = nalgebra::DMatrix::from_fn(rows.len(), 6, |r, c| {
+                let [u, v, _] = rows[r];
+                [1.0, u, v, u * u, u * v, v * v][c]
+            });
+            let h = nalgebra::DVector::from_fn(rows.len(), |r, _| rows[r][2]);
+            let solution = a.clone().svd(true, true).solve(&h, 1e-12).ok()?;
+            let residual = h - a * solution;
+            let freedom = (rows.len() - 6).max(1) as f64;
+            Some((residual.norm_squared() / freedom).sqrt())
+        })
+        .collect();
+    if rms.is_empty() {
+        return 0.0;
+    }
+    let mid = rms.len() / 2;
+    rms.select_nth_unstable_by(mid, f64::total_cmp);
+    rms[mid]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn normalized(v: [f64; 3]) -> [f64; 3] {
+    let l = dot(v, v).sqrt();
+    if l > 0.0 {
+        [v[0] / l, v[1] / l, v[2] / l]
+    } else {
+        v
+    }
+}

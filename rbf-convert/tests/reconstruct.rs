@@ -1,0 +1,108 @@
+//! Scans to surfaces: clouds without normals (or with some flipped) become closed surfaces of
+//! the right topology near the points; flat, tiny and hopelessly noisy clouds are refused.
+
+use rbf_convert::{ConvertError, ReconstructSettings, reconstruct};
+use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_continuation, surface_seeds};
+
+/// Points spread over a torus around z (radii 1 and 0.4) by a golden-ratio lattice, and their
+/// outward normals.
+fn torus(n: usize) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
+    let golden = 0.5 * (5f64.sqrt() - 1.0);
+    (0..n)
+        .map(|i| {
+            let u = std::f64::consts::TAU * i as f64 / n as f64;
+            let v = std::f64::consts::TAU * (i as f64 * golden).fract();
+            let normal = [v.cos() * u.cos(), v.cos() * u.sin(), v.sin()];
+            let r = 1.0 + 0.4 * v.cos();
+            ([r * u.cos(), r * u.sin(), 0.4 * v.sin()], normal)
+        })
+        .unzip()
+}
+
+fn topology(model: &rbf_core::Model<3>) -> (bool, Option<i64>, usize) {
+    let settings = PolygonizeSettings {
+        resolution: Resolution::Cells(64),
+        ..Default::default()
+    };
+    let (mesh, _) =
+        polygonize_continuation(&model.interpolant.view(), &surface_seeds(model), &settings)
+            .unwrap();
+    let r = mesh.check();
+    (r.is_watertight(), r.genus, r.components)
+}
+
+#[test]
+fn a_torus_without_normals_comes_out_closed_with_its_hole() {
+    let (points, _) = torus(4000);
+    let (model, report) = reconstruct(&points, None, &ReconstructSettings::default()).unwrap();
+    assert!(report.normals_estimated && report.within_tolerance);
+    assert_eq!(report.pieces, 1);
+    let (watertight, genus, components) = topology(&model);
+    assert!(watertight);
+    assert_eq!((genus, components), (Some(1), 1));
+    // The surface passes near every point: f changes sign across each within the tolerance.
+    let f = model.interpolant.view();
+    assert!(f.value(&[1.0, 0.0, 0.0]) > 0.0, "inside the tube");
+    assert!(f.value(&[0.0, 0.0, 0.0]) < 0.0, "the hole is outside");
+}
+
+#[test]
+fn flipped_given_normals_are_fixed_before_fitting() {
+    let (points, truth) = torus(3000);
+    let given: Vec<[f64; 3]> = truth
+        .iter()
+        .enumerate()
+        .map(|(i, n)| {
+            if i % 3 == 0 {
+                [-n[0], -n[1], -n[2]]
+            } else {
+                *n
+            }
+        })
+        .collect();
+    let (model, report) =
+        reconstruct(&points, Some(&given), &ReconstructSettings::default()).unwrap();
+    assert!(!report.normals_estimated);
+    assert_eq!(report.flipped, 1000);
+    assert_eq!(topology(&model).1, Some(1));
+}
+
+#[test]
+fn outliers_are_dropped_and_counted() {
+    let (mut points, _) = torus(3000);
+    for i in 0..20 {
+        let t = i as f64;
+        points.push([3.0 + t.sin(), 2.5 * t.cos(), 2.0 + 0.1 * t]);
+    }
+    let (_, report) = reconstruct(&points, None, &ReconstructSettings::default()).unwrap();
+    assert!(report.outliers >= 20, "{} dropped", report.outliers);
+    assert!(report.outliers <= 20 + 60, "{} dropped", report.outliers);
+}
+
+#[test]
+fn flat_and_tiny_clouds_are_refused_with_what_they_are() {
+    let plane: Vec<[f64; 3]> = (0..400)
+        .map(|i| [(i % 20) as f64, (i / 20) as f64, 0.5 * (i % 20) as f64])
+        .collect();
+    let settings = ReconstructSettings {
+        outlier_ratio: None,
+        ..Default::default()
+    };
+    assert!(matches!(
+        reconstruct(&plane, None, &settings),
+        Err(ConvertError::Flat { shape: "plane" })
+    ));
+    let line: Vec<[f64; 3]> = (0..50).map(|i| [i as f64, 2.0 * i as f64, 0.0]).collect();
+    assert!(matches!(
+        reconstruct(&line, None, &settings),
+        Err(ConvertError::Flat { shape: "line" })
+    ));
+    assert!(matches!(
+        reconstruct(&[[0.0; 3]; 5], None, &settings),
+        Err(ConvertError::TooFewPoints { points: 5, .. })
+    ));
+    assert!(matches!(
+        reconstruct(&[[1.0, 2.0, 3.0]; 40], None, &settings),
+        Err(ConvertError::Flat { shape: "point" })
+    ));
+}
