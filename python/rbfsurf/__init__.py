@@ -7,6 +7,7 @@ functions (Turk & O'Brien 2002; Yngve & Turk 2002), by the Rust library rbf:
   "thin_plate_spline"``, ``smoothing``), for scattered data in 2D and 3D;
 - ``fit`` and ``from_oriented_points``: implicit surfaces from boundary, interior,
   exterior and normal constraints; ``convert``: a closed mesh to an implicit surface;
+  ``reconstruct``: a scan (points, normals optional) to a closed surface;
 - ``Model``: call it for f, ``.gradient``, ``.polygonize`` -> (V, F), ``.render`` -> image,
   ``.save`` / ``load`` in the JSON of the ``rbf`` command;
 - ``voxelize`` and ``signed_distance``: volumes of meshes; ``Session``: sculpting with the
@@ -33,6 +34,7 @@ from ._api import (
     load,
         loads,
     read_mesh,
+    reconstruct,
     signed_distance,
     voxelize,
 )
@@ -53,6 +55,7 @@ __all__ = [
     "load",
     "loads",
     "read_mesh",
+    "reconstruct",
     "signed_distance",
     "voxelize",
     "write_mesh",

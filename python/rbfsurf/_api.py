@@ -210,6 +210,48 @@ def convert(
     return (model, report) if return_report else model
 
 
+def reconstruct(
+    points: ArrayLike,
+    normals: Optional[ArrayLike] = None,
+    *,
+    tolerance: Optional[float] = None,
+    max_centres: int = 5000,
+    keep_outliers: bool = False,
+    resolution: Optional[int] = None,
+    return_report: bool = False,
+) -> Union[Tuple[np.ndarray, np.ndarray, Model], Tuple[np.ndarray, np.ndarray, Model, dict]]:
+    """A closed surface from a scan, as ``rbf reconstruct`` makes it: ``(vertices, faces,
+    model)``, and with ``return_report`` a dict of what was done (outliers dropped, normals
+    estimated and flipped, noise, centres, watertight, genus, components).
+
+    ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes). Outliers
+    are dropped unless ``keep_outliers``; every normal is oriented consistently and outward;
+    greedily chosen points carry normal constraints until the surface passes within
+    ``tolerance`` (a fraction of the box's longest side; default three times the measured
+    noise, at least 2.5e-3) of every point, using at most ``max_centres``; the mesh is
+    polygonized at ``resolution`` cubes across the box (default: about the points' spacing).
+
+    >>> import numpy as np, rbfsurf
+    >>> i = np.arange(2000) + 0.5
+    >>> z = 1 - 2 * i / 2000; t = np.pi * (1 + 5**0.5) * i; s = np.sqrt(1 - z * z)
+    >>> v, f, model = rbfsurf.reconstruct(np.c_[s * np.cos(t), s * np.sin(t), z])
+    >>> bool(model([[0, 0, 0]])[0] > 0 > model([[2, 0, 0]])[0]), f.shape[1]
+    (True, 3)
+    """
+    points = _checks.points(points, "points", dims=(3,))
+    if normals is not None:
+        normals = _checks.points(normals, "normals", dims=(3,))
+    v, f, model, report = _native._reconstruct(
+        points,
+        normals,
+        tolerance=tolerance,
+        max_centres=max_centres,
+        keep_outliers=keep_outliers,
+        resolution=resolution,
+    )
+    return (v, f, model, report) if return_report else (v, f, model)
+
+
 class VoxelGrid(NamedTuple):
     """A volume: ``values[i, j, k]`` belongs to the voxel centred at
     ``origin + voxel_size * (i, j, k)``."""

@@ -23,6 +23,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fitting::_fit, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::_convert, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::_voxelize, m)?)?;
+    m.add_function(wrap_pyfunction!(meshes::_reconstruct, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::write_mesh, m)?)?;
     Ok(())

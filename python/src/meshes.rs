@@ -1,12 +1,17 @@
-//! Triangle meshes in and out: files, conversion to implicit surfaces, voxels and distances.
+//! Triangle meshes in and out: files, conversion to implicit surfaces, reconstruction from
+//! scans, voxels and distances.
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rbf_convert::{
-    ConvertError, IterativeSettings, NormalSettings, convert_iterative, convert_normals,
+    ConvertError, IterativeSettings, NormalSettings, ReconstructSettings, convert_iterative,
+    convert_normals, mesh_resolution, reconstruct,
 };
 use rbf_core::NormalOffset;
-use rbf_mesh::{TriMesh, VoxelMethod, VoxelSettings, signed_distance, voxelize};
+use rbf_mesh::{
+    PolygonizeSettings, Resolution, TriMesh, VoxelMethod, VoxelSettings, polygonize_continuation,
+    signed_distance, surface_seeds, voxelize,
+};
 
 use crate::arrays::{Floats, count, mesh_arrays, owned, triangles};
 use crate::error::bad;
@@ -181,4 +186,92 @@ pub(crate) fn _voxelize<'py>(
     let size = volume.voxel_size;
     let shape = volume.shape;
     Ok((owned(py, volume.data, &shape)?, origin, size))
+}
+
+/// A scan to a closed surface (see ``rbfsurf.reconstruct``): the mesh, the model and a dict
+/// of what was done.
+#[pyfunction]
+#[pyo3(signature = (points, normals=None, *, tolerance=None, max_centres=5000, keep_outliers=false, resolution=None))]
+#[allow(clippy::type_complexity)]
+pub(crate) fn _reconstruct<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    normals: Option<&Bound<'py, PyAny>>,
+    tolerance: Option<f64>,
+    max_centres: i64,
+    keep_outliers: bool,
+    resolution: Option<i64>,
+) -> PyResult<(
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Model,
+    Bound<'py, PyDict>,
+)> {
+    let p = Floats::new(points, "points")?;
+    let positions = p.points::<3>("points")?.into_owned();
+    let normals = match normals {
+        Some(n) => {
+            let n = Floats::new(n, "normals")?;
+            let n = n.points::<3>("normals")?.into_owned();
+            if n.len() != positions.len() {
+                return Err(bad(format!(
+                    "normals has {} rows for {} points",
+                    n.len(),
+                    positions.len()
+                )));
+            }
+            Some(n)
+        }
+        None => None,
+    };
+    if let Some(t) = tolerance
+        && !(t > 0.0 && t.is_finite())
+    {
+        return Err(bad(format!(
+            "tolerance must be a finite number > 0, not {t}"
+        )));
+    }
+    let settings = ReconstructSettings {
+        tolerance,
+        max_centres: count(max_centres, 10..=1_000_000, "max_centres")?,
+        outlier_ratio: (!keep_outliers).then_some(2.5),
+        ..Default::default()
+    };
+    let resolution = resolution
+        .map(|r| count(r, 2..=2048, "resolution"))
+        .transpose()?;
+    let (model, report, mesh, resolution) = py
+        .detach(|| {
+            let (model, report) = reconstruct(&positions, normals.as_deref(), &settings)?;
+            let resolution = resolution.unwrap_or_else(|| mesh_resolution(&positions));
+            let polygonize = PolygonizeSettings {
+                resolution: Resolution::Cells(resolution),
+                ..Default::default()
+            };
+            let (mesh, _) = polygonize_continuation(
+                &model.interpolant.view(),
+                &surface_seeds(&model),
+                &polygonize,
+            )?;
+            Ok::<_, ConvertError>((model, report, mesh, resolution))
+        })
+        .map_err(bad)?;
+    let d = PyDict::new(py);
+    d.set_item("points", report.points)?;
+    d.set_item("outliers", report.outliers)?;
+    d.set_item("normals_estimated", report.normals_estimated)?;
+    d.set_item("flipped", report.flipped)?;
+    d.set_item("pieces", report.pieces)?;
+    d.set_item("noise", report.noise)?;
+    d.set_item("tolerance", report.tolerance)?;
+    d.set_item("centres", report.centres)?;
+    d.set_item("largest_miss", report.largest_miss)?;
+    d.set_item("within_tolerance", report.within_tolerance)?;
+    d.set_item("resolution", resolution)?;
+    let check = mesh.check();
+    d.set_item("watertight", check.is_watertight())?;
+    d.set_item("genus", check.genus)?;
+    d.set_item("components", check.components)?;
+    let (v, f) = mesh_arrays(py, &mesh)?;
+    Ok((v, f, Model::new(model), d))
 }

@@ -64,6 +64,10 @@ ENTRY_POINTS = {
     "write_mesh": {
         "vertices": lambda a: rbfsurf.write_mesh("/nonexistent/never.obj", a[: len(TETRA_V)], TETRA_F),
     },
+    "reconstruct": {
+        "points": lambda a: rbfsurf.reconstruct(a),
+        "normals": lambda a: rbfsurf.reconstruct(_cloud(), a),
+    },
     "Model.__call__": {"x": lambda a: _sphere_model()(a)},
     "Model.gradient": {"x": lambda a: _sphere_model().gradient(a)},
 }

@@ -127,3 +127,23 @@ def test_session_takes_the_sculpt_command_language():
     x = np.random.default_rng(0).uniform(-1.5, 1.5, (100, 3))
     assert np.abs(edited.model()(x) - model(x)).max() < 1e-9
     assert "undo" in rbfsurf.Session.COMMANDS
+
+
+def test_reconstruct_a_scan_without_normals():
+    n = 3000
+    golden = 0.5 * (5**0.5 - 1)
+    u = 2 * np.pi * np.arange(n) / n
+    v = 2 * np.pi * ((np.arange(n) * golden) % 1.0)
+    r = 1 + 0.4 * np.cos(v)
+    points = np.c_[r * np.cos(u), r * np.sin(u), 0.4 * np.sin(v)]
+    vertices, faces, model, report = rbfsurf.reconstruct(points, resolution=64, return_report=True)
+    assert report["normals_estimated"] and report["within_tolerance"]
+    assert (report["watertight"], report["genus"], report["components"]) == (True, 1, 1)
+    assert vertices.shape[1] == 3 and faces.shape[1] == 3 and faces.max() < len(vertices)
+    assert model([[1.0, 0.0, 0.0]])[0] > 0 > model([[0.0, 0.0, 0.0]])[0]
+
+
+def test_reconstruct_refuses_a_flat_cloud():
+    flat = np.c_[np.arange(400) % 20, np.arange(400) // 20, np.zeros(400)].astype(float)
+    with pytest.raises(rbfsurf.RbfError, match="lie on a plane"):
+        rbfsurf.reconstruct(flat)

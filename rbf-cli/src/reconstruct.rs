@@ -90,7 +90,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     let (model, report) = result.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
     let resolution = args
         .resolution
-        .unwrap_or_else(|| resolution_from_spacing(&points));
+        .unwrap_or_else(|| rbf_convert::mesh_resolution(&points));
     let polygonize = PolygonizeSettings {
         resolution: Resolution::Cells(resolution),
         ..Default::default()
@@ -180,31 +180,5 @@ fn read_cloud(path: &Path) -> Result<PointCloud, Failure> {
             }
         }
         _ => rbf_mesh::read_point_cloud(path).map_err(|e| Failure::mesh(&e)),
-    }
-}
-
-/// Cubes one median spacing of the points wide along the box's longest side, 96 to 384.
-fn resolution_from_spacing(points: &[[f64; 3]]) -> usize {
-    let near = rbf_cloud::Neighbours::new(points, 1);
-    let mut spacing: Vec<f64> = (0..near.len()).map(|i| near.distances_of(i)[0]).collect();
-    if spacing.is_empty() {
-        return 128;
-    }
-    let mid = spacing.len() / 2;
-    spacing.select_nth_unstable_by(mid, f64::total_cmp);
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
-    let longest = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
-    let cells = longest / spacing[mid].max(f64::MIN_POSITIVE);
-    if cells.is_finite() {
-        (cells as usize).clamp(96, 384)
-    } else {
-        128
     }
 }

@@ -47,6 +47,6 @@ pub use iterative::{IterationReport, IterativeReport, convert_iterative, convert
 pub use normals::{NormalReport, NormalSettings, convert_normals};
 #[doc(hidden)]
 pub use poisson::poisson_subset;
-pub use reconstruct::{ReconstructReport, ReconstructSettings, reconstruct};
+pub use reconstruct::{ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct};
 pub use settings::IterativeSettings;
 pub use topology::TopologyReport;

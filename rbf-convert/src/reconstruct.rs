@@ -374,3 +374,27 @@ fn normalized(v: [f64; 3]) -> [f64; 3] {
         v
     }
 }
+
+/// The resolution to polygonize a reconstruction at: cubes about one median spacing of the
+/// points wide (thin parts keep their topology), 96 to 384 across the box's longest side.
+///
+/// ```
+/// let grid: Vec<[f64; 3]> = (0..1000).map(|i| [(i % 10) as f64, ((i / 10) % 10) as f64, (i / 100) as f64 * 20.0]).collect();
+/// assert_eq!(rbf_convert::mesh_resolution(&grid), 180);
+/// ```
+pub fn mesh_resolution(points: &[[f64; 3]]) -> usize {
+    let near = Neighbours::new(points, 1);
+    let mut spacing: Vec<f64> = (0..near.len()).map(|i| near.distances_of(i)[0]).collect();
+    if spacing.is_empty() {
+        return 128;
+    }
+    let mid = spacing.len() / 2;
+    spacing.select_nth_unstable_by(mid, f64::total_cmp);
+    let longest = longest_side(points);
+    let cells = longest / spacing[mid].max(f64::MIN_POSITIVE);
+    if cells.is_finite() {
+        (cells as usize).clamp(96, 384)
+    } else {
+        128
+    }
+}
