@@ -9,9 +9,12 @@ use crate::{MeshError, TriMesh};
 type Parts = (Vec<[f64; 3]>, Vec<[u32; 3]>);
 
 /// Checks the lines tobj would read, so that errors name a line: `v` needs three finite
-/// numbers, `f` at least three indices that refer to vertices defined so far.
+/// numbers, `f` at least three corners whose vertex, texture and normal indices refer to
+/// `v`, `vt` and `vn` lines defined so far (tobj multiplied a huge normal index into an
+/// overflow: found by the obj fuzz target).
 fn validate(path: &Path, text: &str) -> Result<(), MeshError> {
     let mut vertices: i64 = 0;
+    let (mut textures, mut normals): (i64, i64) = (0, 0);
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
         let mut tokens = raw.split_whitespace();
@@ -26,13 +29,16 @@ fn validate(path: &Path, text: &str) -> Result<(), MeshError> {
                 }
                 vertices += 1;
             }
+            Some("vt") => textures += 1,
+            Some("vn") => normals += 1,
             Some("f") => {
                 let corners: Vec<&str> = tokens.collect();
                 if corners.len() < 3 {
                     return Err(at_line(path, line, "a face needs at least three vertices"));
                 }
                 for c in corners {
-                    let index = c.split('/').next().unwrap_or("");
+                    let mut parts = c.split('/');
+                    let index = parts.next().unwrap_or("");
                     let Ok(v) = index.parse::<i64>() else {
                         return Err(at_line(path, line, format!("`{c}` is not a vertex index")));
                     };
@@ -45,6 +51,27 @@ fn validate(path: &Path, text: &str) -> Result<(), MeshError> {
                                 "vertex index {v} is out of range: {vertices} vertices are defined so far"
                             ),
                         ));
+                    }
+                    for (part, defined, what) in [
+                        (parts.next(), textures, "texture coordinates"),
+                        (parts.next(), normals, "normals"),
+                    ] {
+                        let Some(part) = part.filter(|p| !p.is_empty()) else {
+                            continue;
+                        };
+                        let resolved = part
+                            .parse::<i64>()
+                            .ok()
+                            .map(|k| if k < 0 { defined + k + 1 } else { k });
+                        if !resolved.is_some_and(|k| (1..=defined).contains(&k)) {
+                            return Err(at_line(
+                                path,
+                                line,
+                                format!(
+                                    "`{c}`: index {part} is out of range: {defined} {what} are defined so far"
+                                ),
+                            ));
+                        }
                     }
                 }
             }

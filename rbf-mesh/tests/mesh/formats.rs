@@ -69,6 +69,17 @@ fn malformed_obj_names_the_line() {
     let (l, m) = parse_error("a.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
     assert_eq!(l, Location::Line(4));
     assert!(m.contains("out of range"), "{m}");
+    // A normal or texture index beyond those defined (a huge one overflowed inside tobj:
+    // found by the obj fuzz target).
+    let (l, m) = parse_error(
+        "a.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//6148914691236517206\n",
+    );
+    assert_eq!(l, Location::Line(5));
+    assert!(m.contains("1 normals are defined"), "{m}");
+    let (l, m) = parse_error("a.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/2 2/1 3/1\n");
+    assert_eq!(l, Location::Line(4));
+    assert!(m.contains("0 texture coordinates"), "{m}");
     let (l, _) = parse_error("a.obj", b"v 0 0 nan\n");
     assert_eq!(l, Location::Line(1));
     let (l, _) = parse_error("a.obj", b"v 0 0 0\nv 1 0 0\nf 1 2\n");
