@@ -29,7 +29,13 @@ for t in "${targets[@]}"; do
     cov=$(grep -o 'cov: [0-9]*' <<<"$last" | grep -o '[0-9]*')
     ft=$(grep -o 'ft: [0-9]*' <<<"$last" | grep -o '[0-9]*')
     crashes=$(find "artifacts/$t" -type f | wc -l)
+    # Minimize what libFuzzer added (files named by their hash); the seeds and the inputs that
+    # once crashed (named by hand) stay as they are.
+    keep="$(mktemp -d)"
+    find "corpus/$t" -type f ! -regex '.*/[0-9a-f]\{40\}$' -exec mv {} "$keep" \;
     cargo +nightly fuzz cmin -O "$t" "corpus/$t" >/dev/null 2>&1
+    mv "$keep"/* "corpus/$t/" 2>/dev/null
+    rmdir "$keep"
     files=$(find "corpus/$t" -type f | wc -l)
     echo "| $t | $seconds | ${execs:-?} | ${cov:-?} | ${ft:-?} | $files | $crashes |"
     rm -f "$log"
