@@ -83,3 +83,18 @@ pub(crate) fn spinner(quiet: bool, message: String) -> ProgressBar {
     bar.enable_steady_tick(Duration::from_millis(120));
     bar
 }
+
+/// "watertight, genus 0, 1 component(s)" for a polygonized surface; `open` says what an open
+/// mesh means for the command.
+pub(crate) fn surface_topology(r: &rbf_mesh::MeshReport, open: &str) -> String {
+    format!(
+        "{}, genus {}, {} component(s)",
+        if r.is_watertight() {
+            "watertight"
+        } else {
+            open
+        },
+        r.genus.map_or("-".into(), |g| g.to_string()),
+        r.components
+    )
+}

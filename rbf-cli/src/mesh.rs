@@ -80,7 +80,7 @@ pub(crate) fn run(args: &MeshArgs, quiet: bool) -> Result<(), Failure> {
     if !quiet {
         let r = mesh.check();
         eprintln!(
-            "{} vertices, {} triangles ({} × {} × {} cubes, {} samples) in {:.2} s; {}, genus {}, {} component(s); wrote {}",
+            "{} vertices, {} triangles ({} × {} × {} cubes, {} samples) in {:.2} s; {}; wrote {}",
             r.vertices,
             r.triangles,
             stats.cells[0],
@@ -88,13 +88,7 @@ pub(crate) fn run(args: &MeshArgs, quiet: bool) -> Result<(), Failure> {
             stats.cells[2],
             stats.samples,
             start.elapsed().as_secs_f64(),
-            if r.is_watertight() {
-                "watertight"
-            } else {
-                "open (the surface leaves the box)"
-            },
-            r.genus.map_or("-".into(), |g| g.to_string()),
-            r.components,
+            crate::common::surface_topology(&r, "open (the surface leaves the box)"),
             args.output.display()
         );
     }

@@ -110,7 +110,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     if !quiet {
         let r = mesh.check();
         eprintln!(
-            "{} points read, {} outliers dropped, normals {} ({} flipped, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}; {} triangles at {}, {}, genus {}, {} component(s); {:.2} s; wrote {}",
+            "{} points read, {} outliers dropped, normals {} ({} flipped, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}; {} triangles at {}, {}; {:.2} s; wrote {}",
             report.points,
             report.outliers,
             if report.normals_estimated {
@@ -131,13 +131,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             },
             r.triangles,
             resolution,
-            if r.is_watertight() {
-                "watertight"
-            } else {
-                "open"
-            },
-            r.genus.map_or("-".into(), |g| g.to_string()),
-            r.components,
+            crate::common::surface_topology(&r, "open"),
             start.elapsed().as_secs_f64(),
             args.output.display()
         );

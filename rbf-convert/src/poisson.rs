@@ -42,6 +42,14 @@ pub fn poisson_subset(points: &[[f64; 3]], target: usize) -> Vec<usize> {
 }
 
 fn diameter(points: &[[f64; 3]]) -> f64 {
+    let (lo, hi) = bounds(points);
+    ((0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>())
+        .sqrt()
+        .max(f64::MIN_POSITIVE)
+}
+
+/// The corners of the points' bounding box (infinite for no points).
+pub(crate) fn bounds(points: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in points {
@@ -50,9 +58,7 @@ fn diameter(points: &[[f64; 3]]) -> f64 {
             hi[d] = hi[d].max(p[d]);
         }
     }
-    ((0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>())
-        .sqrt()
-        .max(f64::MIN_POSITIVE)
+    (lo, hi)
 }
 
 /// Keeps each point (in `order`) with no kept point within `r`.

@@ -11,6 +11,7 @@ use rbf_cloud::{Neighbours, estimate_normals, orient_normals, statistical_outlie
 use rbf_core::{Constraint, FitSettings, Model, NormalOffset};
 
 use crate::ConvertError;
+use crate::poisson::bounds;
 
 /// The fewest points a surface is reconstructed from.
 const FEWEST_POINTS: usize = 10;
@@ -225,18 +226,6 @@ fn unit(v: [f64; 3]) -> [f64; 3] {
     } else {
         [0.0; 3]
     }
-}
-
-fn bounds(points: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
-    (lo, hi)
 }
 
 fn longest_side(points: &[[f64; 3]]) -> f64 {

@@ -22,7 +22,7 @@ impl<T: Real + Send + Sync, const D: usize> InterpolantView<'_, T, D> {
     /// assert_eq!(out[500], 1.0 - 0.125);
     /// ```
     pub fn par_values(&self, points: &[[T; D]], out: &mut [T]) -> Result<(), LengthMismatch> {
-        check_length("output", points.len(), out.len())?;
+        LengthMismatch::check("output", points.len(), out.len())?;
         points
             .par_chunks(CHUNK)
             .zip(out.par_chunks_mut(CHUNK))
@@ -46,8 +46,8 @@ impl<T: Real + Send + Sync, const D: usize> InterpolantView<'_, T, D> {
         values: &mut [T],
         gradients: &mut [[T; D]],
     ) -> Result<(), LengthMismatch> {
-        check_length("values", points.len(), values.len())?;
-        check_length("gradients", points.len(), gradients.len())?;
+        LengthMismatch::check("values", points.len(), values.len())?;
+        LengthMismatch::check("gradients", points.len(), gradients.len())?;
         points
             .par_chunks(CHUNK)
             .zip(values.par_chunks_mut(CHUNK))
@@ -82,7 +82,7 @@ impl<const D: usize> InterpolantView<'_, f64, D> {
         points: &[[f64; D]],
         out: &mut [f64],
     ) -> Result<(), LengthMismatch> {
-        check_length("output", points.len(), out.len())?;
+        LengthMismatch::check("output", points.len(), out.len())?;
         let k = self.centres().len();
         points
             .par_chunks(CHUNK)
@@ -116,17 +116,5 @@ impl<const D: usize> InterpolantView<'_, f64, D> {
                 }
                 Ok(())
             })
-    }
-}
-
-fn check_length(what: &'static str, expected: usize, found: usize) -> Result<(), LengthMismatch> {
-    if expected == found {
-        Ok(())
-    } else {
-        Err(LengthMismatch {
-            what,
-            expected,
-            found,
-        })
     }
 }

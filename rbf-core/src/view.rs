@@ -44,6 +44,27 @@ pub struct LengthMismatch {
     pub found: usize,
 }
 
+impl LengthMismatch {
+    /// `Ok` when `found == expected`, else the mismatch naming `what`.
+    ///
+    /// ```
+    /// use rbf_core::LengthMismatch;
+    /// assert!(LengthMismatch::check("output", 3, 3).is_ok());
+    /// assert_eq!(LengthMismatch::check("output", 3, 2).unwrap_err().found, 2);
+    /// ```
+    pub const fn check(what: &'static str, expected: usize, found: usize) -> Result<(), Self> {
+        if expected == found {
+            Ok(())
+        } else {
+            Err(Self {
+                what,
+                expected,
+                found,
+            })
+        }
+    }
+}
+
 impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
     /// A view over centres, one weight per centre, and the affine part `constant + linear·x`.
     ///
@@ -55,12 +76,9 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
         constant: T,
         linear: [T; D],
     ) -> Result<Self, LengthMismatch> {
-        if centres.len() != weights.len() {
-            return Err(LengthMismatch {
-                what: "weights",
-                expected: centres.len(),
-                found: weights.len(),
-            });
+        // `?` is not allowed in a const fn.
+        if let Err(e) = LengthMismatch::check("weights", centres.len(), weights.len()) {
+            return Err(e);
         }
         Ok(Self {
             kernel,
@@ -208,13 +226,7 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
     /// assert_eq!(out, [1.0, 0.0, -7.0]);
     /// ```
     pub fn values(&self, points: &[[T; D]], out: &mut [T]) -> Result<(), LengthMismatch> {
-        if points.len() != out.len() {
-            return Err(LengthMismatch {
-                what: "output",
-                expected: points.len(),
-                found: out.len(),
-            });
-        }
+        LengthMismatch::check("output", points.len(), out.len())?;
         self.values_dispatch(points, out);
         Ok(())
     }
@@ -312,15 +324,8 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
         values: &mut [T],
         gradients: &mut [[T; D]],
     ) -> Result<(), LengthMismatch> {
-        for (what, found) in [("values", values.len()), ("gradients", gradients.len())] {
-            if found != points.len() {
-                return Err(LengthMismatch {
-                    what,
-                    expected: points.len(),
-                    found,
-                });
-            }
-        }
+        LengthMismatch::check("values", points.len(), values.len())?;
+        LengthMismatch::check("gradients", points.len(), gradients.len())?;
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
         {
             if std::is_x86_feature_detected!("avx512f") {

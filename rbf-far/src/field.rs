@@ -122,7 +122,7 @@ impl<const D: usize> FarField<D> {
     /// one axis at a time), deepest level first, each level on every core.
     /// A `weights` of another length than the centres is refused.
     pub fn charges(&self, weights: &[f64]) -> Result<Charges, LengthMismatch> {
-        check_length("weights", self.len(), weights.len())?;
+        LengthMismatch::check("weights", self.len(), weights.len())?;
         let sorted: Vec<f64> = self.tree.order.iter().map(|&i| weights[i]).collect();
         let mut proxy: Vec<Vec<f64>> = vec![Vec::new(); self.tree.nodes.len()];
         for level in self.levels.iter().rev() {
@@ -143,8 +143,8 @@ impl<const D: usize> FarField<D> {
 
     /// Refuses charges made by another field (their lengths differ from this one's).
     fn check_charges(&self, charges: &Charges) -> Result<(), LengthMismatch> {
-        check_length("charges", self.len(), charges.weights.len())?;
-        check_length("charges", self.tree.nodes.len(), charges.proxy.len())
+        LengthMismatch::check("charges", self.len(), charges.weights.len())?;
+        LengthMismatch::check("charges", self.tree.nodes.len(), charges.proxy.len())
     }
 
     /// Node `n`'s proxy charges from its children's (or its own centres where a child has no
@@ -189,7 +189,7 @@ impl<const D: usize> FarField<D> {
         targets: &[[f64; D]],
         out: &mut [f64],
     ) -> Result<(), LengthMismatch> {
-        check_length("output", targets.len(), out.len())?;
+        LengthMismatch::check("output", targets.len(), out.len())?;
         self.check_charges(charges)?;
         let target_tree = Tree::new(targets, self.settings.target_leaf);
         let parts: Vec<(usize, Vec<f64>)> = target_tree
@@ -220,8 +220,8 @@ impl<const D: usize> FarField<D> {
         values: &mut [f64],
         gradients: &mut [[f64; D]],
     ) -> Result<(), LengthMismatch> {
-        check_length("values", targets.len(), values.len())?;
-        check_length("gradients", targets.len(), gradients.len())?;
+        LengthMismatch::check("values", targets.len(), values.len())?;
+        LengthMismatch::check("gradients", targets.len(), gradients.len())?;
         self.check_charges(charges)?;
         let target_tree = Tree::new(targets, self.settings.target_leaf);
         let parts: Vec<(usize, Vec<f64>, Vec<[f64; D]>)> = target_tree
@@ -254,7 +254,7 @@ impl<const D: usize> FarField<D> {
     /// Σⱼ wⱼ φ(|cᵢ − cⱼ|) at every centre, in the caller's order: the product of the kernel
     /// matrix with the weights, the targets grouped by the field's own leaves.
     pub fn self_values(&self, charges: &Charges, out: &mut [f64]) -> Result<(), LengthMismatch> {
-        check_length("output", self.len(), out.len())?;
+        LengthMismatch::check("output", self.len(), out.len())?;
         self.check_charges(charges)?;
         let leaves = self.tree.leaves();
         let parts: Vec<(usize, Vec<f64>)> = leaves
@@ -484,21 +484,4 @@ fn interpolate_grid<const D: usize>(to: &[Axis; D], from: &[Axis; D], q: &[f64])
         t = next;
     }
     t
-}
-
-/// `found` must be `expected`, or the slice `what` is refused.
-pub(crate) fn check_length(
-    what: &'static str,
-    expected: usize,
-    found: usize,
-) -> Result<(), LengthMismatch> {
-    if expected == found {
-        Ok(())
-    } else {
-        Err(LengthMismatch {
-            what,
-            expected,
-            found,
-        })
-    }
 }
