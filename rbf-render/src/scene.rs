@@ -88,6 +88,9 @@ struct Renderer<'s, 'm> {
     offset: f64,
 }
 
+/// Side of the square tiles of pixels traced together.
+const TILE: usize = 32;
+
 /// Renders the objects, made of the models, as the camera sees them.
 ///
 /// ```
@@ -161,22 +164,32 @@ pub fn render<F: ScalarField<3>>(
     };
     let start = Instant::now();
     let (width, height) = (camera.width as usize, camera.height as usize);
-    // One ray through each pixel's centre, row by row.
-    let rows: Vec<(Vec<[f64; 3]>, TraceCounts)> = (0..camera.height)
+    // One ray through each pixel's centre, a square tile at a time: the points that one batch
+    // evaluates lie close together, so a far field finds few centres near them (a row of the
+    // image spans the whole object; measured on a 10⁵-centre model at 512 × 512: tracing took
+    // 10.7 s by rows).
+    let tiles_x = width.div_ceil(TILE);
+    let tiles: Vec<(usize, Vec<[f64; 3]>, TraceCounts)> = (0..tiles_x * height.div_ceil(TILE))
         .into_par_iter()
-        .map(|y| {
+        .map(|tile| {
             let mut counts = TraceCounts::default();
-            let rays: Vec<Ray> = (0..camera.width)
-                .map(|x| camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5))
+            let (x0, y0) = ((tile % tiles_x) * TILE, (tile / tiles_x) * TILE);
+            let rays: Vec<Ray> = (y0..(y0 + TILE).min(height))
+                .flat_map(|y| (x0..(x0 + TILE).min(width)).map(move |x| (x, y)))
+                .map(|(x, y)| camera.ray(x as f64 + 0.5, y as f64 + 0.5))
                 .collect();
             let colours = renderer.radiance(&rays, settings.reflections, &mut counts);
-            (colours, counts)
+            (tile, colours, counts)
         })
         .collect();
     let mut counts = TraceCounts::default();
-    let mut colours: Vec<[f64; 3]> = Vec::with_capacity(width * height);
-    for (row, c) in rows {
-        colours.extend(row);
+    let mut colours: Vec<[f64; 3]> = vec![[0.0; 3]; width * height];
+    for (tile, tile_colours, c) in tiles {
+        let (x0, y0) = ((tile % tiles_x) * TILE, (tile / tiles_x) * TILE);
+        let w = (x0 + TILE).min(width) - x0;
+        for (k, colour) in tile_colours.into_iter().enumerate() {
+            colours[(y0 + k / w) * width + x0 + k % w] = colour;
+        }
         counts.rays += c.rays;
         counts.evaluations += c.evaluations;
     }
