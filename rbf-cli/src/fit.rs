@@ -254,6 +254,11 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
             } else {
                 IterativeOptions::default().far_field_rows
             },
+            relaxed_rows: if args.exact {
+                usize::MAX
+            } else {
+                IterativeOptions::default().relaxed_rows
+            },
             // A limit the user set is kept: missing it is an error, not a note.
             accept_rounding_floor: args.max_residual.is_none(),
             ..Default::default()
@@ -470,6 +475,7 @@ impl Job<'_> {
             .unwrap_or(self.settings.max_residual);
         let spinner = spinner(self.quiet, format!("checking {rows} rows"));
         let rounding_floor = std::cell::Cell::new(None);
+        let relaxed = std::cell::Cell::new(None);
         let solving = std::cell::Cell::new(Instant::now());
         let first = std::cell::Cell::new(f64::NAN);
         let fit = rbf_solve::fit_with(&constraints, &self.settings, &options, |p| {
@@ -494,6 +500,10 @@ impl Job<'_> {
                     format!("{rows} rows: products through the far field (order {order})")
                 }
                 IterativeProgress::DirectSums => format!("{rows} rows: products by direct sums"),
+                IterativeProgress::Relaxed { products, of } => {
+                    relaxed.set(Some((products, of)));
+                    format!("{rows} rows: {products} of {of} products through a relaxed far field")
+                }
                 IterativeProgress::RoundingFloor { residual, .. } => {
                     format!("{rows} rows: stopped at residual {residual:.1e}, the rounding floor")
                 }
@@ -545,8 +555,12 @@ impl Job<'_> {
             );
         }
         if !self.quiet {
-            let how = match report.method {
-                SolveMethod::Iterative => format!("{} iterations", report.iterations),
+            let how = match (report.method, relaxed.get()) {
+                (SolveMethod::Iterative, Some((products, of))) if self.verbose => format!(
+                    "{} iterations ({products} of {of} products through a relaxed far field)",
+                    report.iterations
+                ),
+                (SolveMethod::Iterative, _) => format!("{} iterations", report.iterations),
                 _ => format!("condition ≈ {:.1e}", report.condition),
             };
             eprintln!(

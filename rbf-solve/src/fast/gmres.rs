@@ -14,6 +14,9 @@ pub(crate) struct GmresLimits {
     pub(crate) max_iterations: usize,
 }
 
+/// out = A v, given what the product is for (see [`fgmres`]).
+pub(crate) type Operator<'a> = dyn Fn(&[f64], &mut [f64], Option<f64>) + Sync + 'a;
+
 /// The caller's verdict on an iterate x, given its true residual, the iterations so far and
 /// what the recurrence claimed for it (the largest entry of its residual vector).
 pub(crate) type Judge<'a> = dyn FnMut(&[f64], &[f64], usize, f64) -> Acceptance + 'a;
@@ -28,7 +31,11 @@ pub(crate) struct GmresEnd {
 
 /// Solves A x = b from x = 0.
 ///
-/// - `apply(v, out)`: out = A v;
+/// - `apply(v, out, residual)`: out = A v. For a Krylov direction, `residual` is the largest
+///   entry of the residual that the direction is to reduce (the recurrence's, before this
+///   iteration): the product may be taken less accurately the smaller that is (inexact Krylov
+///   methods: Simoncini & Szyld, SIAM J. Sci. Comput. 25(2), 2003). `None` asks for a true
+///   residual, which must be as exact as the caller can make it;
 /// - `precondition(v)`: an approximation of A⁻¹ v (it may change between calls);
 /// - `accept(x, r, iterations, claimed)`: given the iterate, its true residual r = b − A x, the
 ///   iterations so far and the recurrence's claim, says whether it is good enough; asked at
@@ -41,7 +48,7 @@ pub(crate) struct GmresEnd {
 pub(crate) fn fgmres(
     b: &[f64],
     limits: &GmresLimits,
-    apply: &(dyn Fn(&[f64], &mut [f64]) + Sync),
+    apply: &Operator<'_>,
     precondition: &(dyn Fn(&[f64]) -> Vec<f64> + Sync),
     accept: &mut Judge<'_>,
     progress: &mut dyn FnMut(usize, f64),
@@ -77,9 +84,11 @@ pub(crate) fn fgmres(
         let mut h: Vec<Vec<f64>> = Vec::with_capacity(m);
         let mut cs: Vec<(f64, f64)> = Vec::with_capacity(m);
         let mut s = vec![beta];
+        // The largest entry of the residual the next direction is to reduce.
+        let mut reducing = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
         for j in 0..m {
             let zj = precondition(&v[j]);
-            apply(&zj, &mut scratch);
+            apply(&zj, &mut scratch, Some(reducing));
             z.push(zj);
             let mut w = scratch.clone();
             let mut col = vec![0.0; j + 2];
@@ -118,12 +127,13 @@ pub(crate) fn fgmres(
             let estimate = recurrence_residual(&v, &cs, s[j + 1]);
             let largest = estimate.iter().fold(0.0_f64, |a, r| a.max(r.abs()));
             progress(iterations, largest);
+            reducing = largest;
             let last = breakdown || iterations >= limits.max_iterations || j + 1 == m;
             if largest > target * trust && !last {
                 continue;
             }
             let xj = iterate(&x, &z, &h, &s);
-            apply(&xj, &mut scratch);
+            apply(&xj, &mut scratch, None);
             let rj: Vec<f64> = b.par_iter().zip(&scratch).map(|(bi, ax)| bi - ax).collect();
             match accept(&xj, &rj, iterations, largest) {
                 Acceptance::Done => return end(xj, iterations, true),
@@ -220,7 +230,7 @@ mod tests {
     use super::*;
 
     /// A non-symmetric, diagonally dominant tridiagonal operator.
-    fn apply(v: &[f64], out: &mut [f64]) {
+    fn apply(v: &[f64], out: &mut [f64], _: Option<f64>) {
         let n = v.len();
         for i in 0..n {
             let mut t = 4.0 * v[i];
@@ -262,7 +272,7 @@ mod tests {
         assert!(end.converged);
         assert!(checks > 2, "restarts happened");
         let mut ax = vec![0.0; n];
-        apply(&end.x, &mut ax);
+        apply(&end.x, &mut ax, None);
         let err = ax
             .iter()
             .zip(&b)
@@ -276,9 +286,9 @@ mod tests {
         let n = 300;
         let b: Vec<f64> = (0..n).map(|i| ((i * 5) % 11) as f64 - 5.0).collect();
         let products = std::sync::atomic::AtomicUsize::new(0);
-        let counted = |v: &[f64], out: &mut [f64]| {
+        let counted = |v: &[f64], out: &mut [f64], residual: Option<f64>| {
             products.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            apply(v, out);
+            apply(v, out, residual);
         };
         let (mut checks, mut worst_gap) = (0, 0.0_f64);
         let end = fgmres(

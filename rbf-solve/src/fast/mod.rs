@@ -11,9 +11,12 @@ use rbf_core::{Fit, FitError, FitSettings, Solution, SolveMethod, System};
 
 use crate::probe::memory_budget;
 use gmres::{Acceptance, GmresLimits, fgmres};
-use products::{FAR_FIELD_ROWS, Products};
+use products::{FAR_FIELD_ROWS, Products, RELAXED_ROWS};
 use schwarz::Schwarz;
 pub use schwarz::SchwarzSettings;
+
+/// The share of the tolerance that the error of one relaxed product may cost.
+const RELAXATION: f64 = 0.1;
 
 /// Iterations (and three checks) without halving the true residual after which the solver
 /// stops.
@@ -36,6 +39,11 @@ pub struct IterativeOptions {
     /// Rows from which the products go through the far field (rbf-far) instead of direct sums;
     /// 400 000 by default (below, direct products are about as fast and GMRES needs fewer).
     pub far_field_rows: usize,
+    /// Rows from which a Krylov product whose direction reduces an already small residual may
+    /// go through a cheaper, less accurate far field (inexact Krylov); 50 000 by default. The
+    /// error allowed grows as the residual falls: a tenth of the tolerance over the relative
+    /// residual. True residuals are still measured exactly.
+    pub relaxed_rows: usize,
     /// Accept a solve that stalls above `FitSettings::max_residual` but within the rounding
     /// floor of its products (see [`IterativeProgress::RoundingFloor`]); on by default, off
     /// where the caller asked for that limit explicitly.
@@ -53,6 +61,7 @@ impl Default for IterativeOptions {
             restart: 40,
             schwarz: SchwarzSettings::default(),
             far_field_rows: FAR_FIELD_ROWS,
+            relaxed_rows: RELAXED_ROWS,
             accept_rounding_floor: true,
             allow_unconverged: false,
         }
@@ -90,6 +99,14 @@ pub enum IterativeProgress {
         iteration: usize,
         /// The estimate.
         estimate: f64,
+    },
+    /// At the end, if any Krylov product went through a cheaper far field (inexact Krylov; see
+    /// [`IterativeOptions::relaxed_rows`]): how many did, of all.
+    Relaxed {
+        /// Products taken through a relaxed far field.
+        products: usize,
+        /// All the solve's products.
+        of: usize,
     },
     /// The true residual at a check (max norm, relative to max|hᵢ|): at the start, at every
     /// restart, when the estimate says the tolerance may be met, and at the end.
@@ -139,17 +156,29 @@ pub fn solve_iterative<const D: usize>(
 
     // From `far_field_rows` the products go through the far field, its order chosen on the
     // first preconditioned direction (an approximation of the solution, with its
-    // cancellations) so that its error stays within a quarter of the tolerance.
-    let products = if k >= options.far_field_rows {
-        let trial = schwarz.apply(system, &b[..k], &b[k..]);
-        Products::far(system, &trial[..k], tolerance * hmax)
-    } else {
-        Products::direct(system)
+    // cancellations) so that its error stays within a quarter of the tolerance; from
+    // `relaxed_rows`, cheaper far fields measured on it too.
+    let trial = (k >= options.far_field_rows.min(options.relaxed_rows))
+        .then(|| schwarz.apply(system, &b[..k], &b[k..]));
+    let mut products = match &trial {
+        Some(trial) if k >= options.far_field_rows => {
+            Products::far(system, &trial[..k], tolerance * hmax)
+        }
+        _ => Products::direct(system),
     };
+    if let Some(trial) = trial.filter(|_| k >= options.relaxed_rows) {
+        products = products.relaxed(&trial[..k], hmax);
+    }
     if let Some(order) = products.order() {
         progress(IterativeProgress::FarField { order });
     }
-    let apply = |x: &[f64], out: &mut [f64]| products.apply(x, out);
+    // A direction that reduces a residual of r (largest entry) changes the solution by about
+    // r over the size of its product, so an error of e in that product costs about e · r at the
+    // end: a tenth of the tolerance is allowed for each (Simoncini & Szyld's relaxation).
+    let apply = |x: &[f64], out: &mut [f64], residual: Option<f64>| {
+        let allowed = residual.map_or(0.0, |r| RELAXATION * tolerance * hmax / r);
+        products.apply(x, out, allowed);
+    };
     let precondition = |v: &[f64]| schwarz.apply(system, &v[..k], &v[k..]);
     let progress = std::cell::RefCell::new(progress);
     let mut last = f64::INFINITY;
@@ -193,6 +222,13 @@ pub fn solve_iterative<const D: usize>(
         ahead = claimed <= 0.1 * rh;
         if last <= tolerance && moments_met {
             Acceptance::Done
+        } else if iteration > 0 && products.stop_relaxing() {
+            // The recurrence said the tolerance may be met and the truth did not: relaxed
+            // products may have taken it off course. Exact products from here on.
+            ahead = false;
+            Acceptance::Continue {
+                target: 0.5 * tolerance * hmax,
+            }
         } else if (was_ahead && ahead && !halved)
             || (checks_since >= 3 && iteration >= improved_at + STALL)
         {
@@ -219,6 +255,13 @@ pub fn solve_iterative<const D: usize>(
         max_iterations: options.max_iterations,
     };
     let mut end = fgmres(&b, &limits, &apply, &precondition, &mut accept, &mut report);
+    let (relaxed, all) = products.counts();
+    if relaxed > 0 {
+        (progress.borrow_mut())(IterativeProgress::Relaxed {
+            products: relaxed,
+            of: all,
+        });
+    }
     // A solve that did not converge returns the best iterate it measured, not the last.
     if !end.converged
         && let Some((residual, x)) = kept.take()
