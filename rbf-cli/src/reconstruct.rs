@@ -103,6 +103,9 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     );
     bar.finish_and_clear();
     let (mesh, _) = meshed.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
+    // Bubbles that no scanned point is near are not part of the scanned surface.
+    let (mesh, bubbles) = rbf_convert::supported_pieces(&mesh, &points, report.support_reach)
+        .map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
     write_mesh(&args.output, &mesh).map_err(|e| Failure::mesh(&e))?;
     if let Some(path) = &args.model {
         write_atomically(path, model.to_json().as_bytes())?;
@@ -110,7 +113,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     if !quiet {
         let r = mesh.check();
         eprintln!(
-            "{} points read, {} outliers dropped, normals {} ({} flipped, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}; {} triangles at {}, {}; {:.2} s; wrote {}",
+            "{} points read, {} outliers dropped, normals {} ({} flipped, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             report.outliers,
             if report.normals_estimated {
@@ -129,8 +132,13 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             } else {
                 " (above the tolerance: the centre budget ran out; raise --max-centres)"
             },
+            report.outside_added,
             r.triangles,
             resolution,
+            match bubbles {
+                0 => String::new(),
+                n => format!(" ({n} bubble(s) away from every point dropped)"),
+            },
             crate::common::surface_topology(&r, "open"),
             start.elapsed().as_secs_f64(),
             args.output.display()

@@ -4,7 +4,9 @@
 //! point's nearest neighbours ([`Neighbours`], one k-d tree, kiddo's), statistical outliers
 //! ([`statistical_outliers`]), normals from local planes ([`estimate_normals`]) and their
 //! consistent orientation over a minimum spanning tree of the neighbour graph
-//! ([`orient_normals`], Hoppe et al. 1992 with König & Gumhold 2009's edge weights). No solver
+//! ([`orient_normals`], Hoppe et al. 1992 with König & Gumhold 2009's edge weights), how far
+//! off the surface each point may place constraints ([`clear_offsets`]), and how far points
+//! are from the cloud ([`distances_to_cloud`]). No solver
 //! lives here: the reconstruction pipeline takes these and fits.
 //!
 //! ```
@@ -25,12 +27,16 @@
 //! assert!(points.iter().zip(&oriented.normals).all(|(p, n)| p[0] * n[0] + p[1] * n[1] + p[2] * n[2] > 0.9));
 //! ```
 
+mod distance;
 mod neighbours;
 mod normals;
+mod offsets;
 mod orientation;
 mod outliers;
 
+pub use distance::distances_to_cloud;
 pub use neighbours::Neighbours;
 pub use normals::estimate_normals;
+pub use offsets::clear_offsets;
 pub use orientation::{Orientation, orient_normals};
 pub use outliers::statistical_outliers;

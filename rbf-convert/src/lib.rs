@@ -38,6 +38,7 @@ mod poisson;
 mod polish;
 mod reconstruct;
 mod settings;
+mod support;
 mod topology;
 
 pub use blend::{BlendReport, blend};
@@ -49,4 +50,5 @@ pub use normals::{NormalReport, NormalSettings, convert_normals};
 pub use poisson::poisson_subset;
 pub use reconstruct::{ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct};
 pub use settings::IterativeSettings;
+pub use support::supported_pieces;
 pub use topology::TopologyReport;

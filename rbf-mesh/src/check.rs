@@ -51,13 +51,14 @@ impl MeshReport {
     }
 }
 
-struct UnionFind(Vec<u32>);
+/// Disjoint sets of vertex indices.
+pub(crate) struct UnionFind(Vec<u32>);
 
 impl UnionFind {
-    fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         Self((0..n as u32).collect())
     }
-    fn find(&mut self, mut x: u32) -> u32 {
+    pub(crate) fn find(&mut self, mut x: u32) -> u32 {
         while self.0[x as usize] != x {
             let parent = self.0[self.0[x as usize] as usize];
             self.0[x as usize] = parent;
@@ -65,7 +66,7 @@ impl UnionFind {
         }
         x
     }
-    fn union(&mut self, a: u32, b: u32) {
+    pub(crate) fn union(&mut self, a: u32, b: u32) {
         let (ra, rb) = (self.find(a), self.find(b));
         if ra != rb {
             self.0[ra.max(rb) as usize] = ra.min(rb);

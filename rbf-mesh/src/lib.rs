@@ -26,6 +26,7 @@
 
 mod check;
 mod closest;
+mod components;
 mod distance;
 mod error;
 mod hash;

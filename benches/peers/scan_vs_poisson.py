@@ -1,0 +1,236 @@
+#!/usr/bin/env python3
+"""Scans to surfaces: `rbf reconstruct` beside Open3D's screened Poisson pipeline (and
+pymeshlab's, when installed), on the same simulated scans, in one sitting.
+
+Each scan is made from a closed mesh of ../shared/data/meshes, seeded and repeatable:
+
+- N points spread by area with an uneven density (a smooth random field over the object makes
+  some regions up to four times as dense as others);
+- holes: the points within 4 % of the diagonal of three random surface points are removed;
+- Gaussian noise of σ = NOISE × the diagonal along every axis;
+- outliers: 0.2 % more points, uniform in the box grown by a tenth.
+
+No normals are given to either tool. Open3D (as its users run it): statistical outliers (20
+neighbours, 2 deviations), normals from 20 neighbours, oriented by its tangent-plane MST,
+screened Poisson at depth 9 (10 from 5·10⁵ points); pymeshlab: the same steps through MeshLab's
+filters. rbf: `rbf reconstruct` with every default.
+
+Measured against the true mesh, each from 10⁵ points spread by area on both surfaces: Chamfer
+distance (the mean of the two mean nearest distances) and two-way Hausdorff, in % of the
+diagonal; F-score at 0.5 % and 1 % of the diagonal; the share of normals flipped (Open3D: its
+oriented normals at the scan's points; rbf: the model's outward normal −∇f at the clean points;
+both against the true face normals); watertight, components, genus (of the largest component);
+wall time and peak memory of the whole tool (reading and writing included).
+
+    python3 -m venv /tmp/scan-venv && /tmp/scan-venv/bin/pip install numpy scipy trimesh networkx open3d pymeshlab
+    cargo build --release -p rbf-cli
+    /tmp/scan-venv/bin/python benches/peers/scan_vs_poisson.py [--points 100000]
+        [--noise 0 0.002 0.005 0.01] [MESH ...]
+
+Prints one JSON line per scan and tool, then a Markdown table.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+import trimesh
+from scipy.spatial import cKDTree
+
+here = os.path.dirname(os.path.abspath(__file__))
+root = os.path.dirname(os.path.dirname(here))
+meshes_dir = os.path.join(root, "..", "shared", "data", "meshes")
+rbf = os.environ.get("RBF", os.path.join(root, "target", "release", "rbf"))
+DEFAULT_MESHES = ["bunny_small", "spot", "cow", "knot", "torus", "koala"]
+
+
+def simulate(mesh, n, noise, seed):
+    """(points, clean points, true normals of the clean points, mask of real points)."""
+    rng = np.random.default_rng(seed)
+    diag = float(np.linalg.norm(mesh.extents))
+    lo = mesh.bounds[0]
+    # Uneven density: accept each candidate with a probability from a smooth random field.
+    k = rng.normal(size=(4, 3)) * 2.0 * np.pi / diag
+    phase = rng.uniform(0, 2 * np.pi, 4)
+    pts, normals = np.empty((0, 3)), np.empty((0, 3))
+    holes, _ = trimesh.sample.sample_surface(mesh, 3, seed=int(rng.integers(1 << 31)))
+    while len(pts) < n:
+        p, faces = trimesh.sample.sample_surface(mesh, 2 * n, seed=int(rng.integers(1 << 31)))
+        field = np.mean(np.sin((p - lo) @ k.T + phase), axis=1)  # in [-1, 1]
+        keep = rng.uniform(size=len(p)) < 0.25 + 0.75 * (field + 1) / 2
+        near_hole = np.min(np.linalg.norm(p[:, None, :] - holes[None], axis=2), axis=1)
+        keep &= near_hole > 0.04 * diag
+        pts = np.vstack([pts, p[keep]])
+        normals = np.vstack([normals, mesh.face_normals[faces[keep]]])
+    clean, normals = pts[:n], normals[:n]
+    noisy = clean + rng.normal(size=clean.shape) * noise * diag
+    m = max(1, int(0.002 * n))
+    grow = 0.1 * mesh.extents
+    outliers = rng.uniform(mesh.bounds[0] - grow, mesh.bounds[1] + grow, size=(m, 3))
+    real = np.concatenate([np.ones(n, bool), np.zeros(m, bool)])
+    order = rng.permutation(n + m)
+    cloud = np.vstack([noisy, outliers])[order]
+    return cloud, clean, normals, real[order], order
+
+
+def timed(command):
+    """Runs a command under /usr/bin/time: (result fields, wall seconds, peak MiB)."""
+    with tempfile.NamedTemporaryFile(suffix=".time") as f:
+        t = time.perf_counter()
+        done = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", f.name, *command],
+                              capture_output=True, text=True)
+        seconds = time.perf_counter() - t
+        peak = int(open(f.name).read().split()[-1]) / 1024
+    r = dict(seconds=round(seconds, 2), peak_MiB=round(peak))
+    if done.returncode != 0:
+        r["error"] = done.stderr.strip()[-300:]
+    return r
+
+
+def run_rbf(cloud_path, out_dir):
+    mesh_path = os.path.join(out_dir, "rbf.ply")
+    model_path = os.path.join(out_dir, "rbf.json")
+    r = timed([rbf, "reconstruct", cloud_path, "-o", mesh_path, "--model", model_path, "-q"])
+    return dict(r, mesh=mesh_path, model=model_path)
+
+
+# Open3D and pymeshlab run in a child process each, so that their time and peak memory are
+# measured like rbf's.
+OPEN3D = r"""
+import sys, numpy as np, open3d as o3d
+cloud, out, normals_out, depth = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+pcd = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(np.load(cloud)))
+pcd, kept = pcd.remove_statistical_outlier(nb_neighbors=20, std_ratio=2.0)
+pcd.estimate_normals(o3d.geometry.KDTreeSearchParamKNN(knn=20))
+pcd.orient_normals_consistent_tangent_plane(20)
+mesh, _ = o3d.geometry.TriangleMesh.create_from_point_cloud_poisson(pcd, depth=depth)
+o3d.io.write_triangle_mesh(out, mesh)
+np.save(normals_out, np.column_stack([np.array(kept, float), np.asarray(pcd.normals)]))
+"""
+
+MESHLAB = r"""
+import sys, numpy as np, pymeshlab
+cloud, out, depth = sys.argv[1], sys.argv[2], int(sys.argv[3])
+ms = pymeshlab.MeshSet()
+ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.load(cloud)))
+ms.compute_selection_point_cloud_outliers(propthreshold=0.8, knearest=20)
+ms.meshing_remove_selected_vertices()
+ms.compute_normal_for_point_clouds(k=20, smoothiter=0)
+ms.generate_surface_reconstruction_screened_poisson(depth=depth)
+ms.save_current_mesh(out)
+"""
+
+
+def run_child(script, args):
+    return timed([sys.executable, "-c", script, *args])
+
+
+def surface_metrics(path, truth, truth_samples, diag):
+    mesh = trimesh.load(path, force="mesh", process=True)
+    if len(mesh.faces) == 0:
+        return dict(error="empty mesh")
+    pieces = mesh.split(only_watertight=False)
+    largest = max(pieces, key=lambda m: len(m.faces))
+    samples, _ = trimesh.sample.sample_surface(mesh, len(truth_samples), seed=7)
+    d_to_truth, _ = cKDTree(truth_samples).query(samples)
+    d_to_mesh, _ = cKDTree(samples).query(truth_samples)
+    out = dict(
+        chamfer_pct=round(100 * 0.5 * (d_to_truth.mean() + d_to_mesh.mean()) / diag, 4),
+        hausdorff_pct=round(100 * max(d_to_truth.max(), d_to_mesh.max()) / diag, 3),
+        watertight=bool(mesh.is_watertight),
+        components=len(pieces),
+        genus=int(round((2 - largest.euler_number) / 2)),
+    )
+    for tau in (0.005, 0.01):
+        precision = float(np.mean(d_to_truth < tau * diag))
+        recall = float(np.mean(d_to_mesh < tau * diag))
+        f = 2 * precision * recall / (precision + recall) if precision + recall else 0.0
+        out[f"f_score_{tau * 100:g}pct"] = round(f, 4)
+    return out
+
+
+def flipped_rbf(model_path, clean, normals, out_dir):
+    pts = os.path.join(out_dir, "clean.npy")
+    grads = os.path.join(out_dir, "grads.npy")
+    np.save(pts, clean)
+    subprocess.run([rbf, "eval", model_path, pts, "--gradient", "-o", grads], check=True,
+                   capture_output=True)
+    g = np.load(grads)[:, 1:4]
+    return float(np.mean(np.sum(-g * normals, axis=1) < 0))
+
+
+def flipped_open3d(path, order, real, normals):
+    data = np.load(path)
+    kept, n = data[:, 0].astype(int), data[:, 1:4]
+    original = order[kept]  # index into [clean points, outliers]
+    is_real = original < len(normals)
+    dots = np.sum(n[is_real] * normals[original[is_real]], axis=1)
+    return float(np.mean(dots < 0))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("meshes", nargs="*", default=DEFAULT_MESHES)
+    ap.add_argument("--points", type=int, default=100_000)
+    ap.add_argument("--noise", type=float, nargs="+", default=[0.0, 0.002, 0.005])
+    ap.add_argument("--depth", type=int, default=None, help="Poisson depth (9, 10 from 5e5)")
+    args = ap.parse_args()
+    depth = args.depth or (10 if args.points >= 500_000 else 9)
+    try:
+        import pymeshlab  # noqa: F401
+        have_meshlab = True
+    except ImportError:
+        have_meshlab = False
+    rows = []
+    for name in args.meshes:
+        truth = trimesh.load(os.path.join(meshes_dir, name + ".obj"), force="mesh")
+        diag = float(np.linalg.norm(truth.extents))
+        truth_samples, _ = trimesh.sample.sample_surface(truth, 100_000, seed=3)
+        for noise in args.noise:
+            out_dir = tempfile.mkdtemp(prefix=f"scan-{name}-")
+            cloud, clean, normals, real, order = simulate(truth, args.points, noise, seed=11)
+            cloud_path = os.path.join(out_dir, "cloud.npy")
+            np.save(cloud_path, cloud)
+            scan = dict(mesh=name, points=len(cloud), noise_pct=100 * noise)
+            tools = ["rbf reconstruct", "Open3D Poisson"]
+            if have_meshlab:
+                tools.append("pymeshlab Poisson")
+            for tool in tools:
+                if tool == "rbf reconstruct":
+                    r = run_rbf(cloud_path, out_dir)
+                    path = r.get("mesh")
+                elif tool == "Open3D Poisson":
+                    path = os.path.join(out_dir, "open3d.ply")
+                    nrm = os.path.join(out_dir, "open3d-normals.npy")
+                    r = run_child(OPEN3D, [cloud_path, path, nrm, str(depth)])
+                else:
+                    path = os.path.join(out_dir, "meshlab.ply")
+                    r = run_child(MESHLAB, [cloud_path, path, str(depth)])
+                if "error" not in r:
+                    r.update(surface_metrics(path, truth, truth_samples, diag))
+                    if tool == "rbf reconstruct":
+                        r["flipped"] = flipped_rbf(r["model"], clean, normals, out_dir)
+                    elif tool == "Open3D Poisson":
+                        r["flipped"] = flipped_open3d(nrm, order, real, normals)
+                if tool == "rbf reconstruct":
+                    r.pop("mesh")
+                    r.pop("model")
+                row = dict(scan, tool=tool, **r)
+                rows.append(row)
+                print(json.dumps(row), flush=True)
+    keys = ["mesh", "noise_pct", "tool", "seconds", "peak_MiB", "chamfer_pct", "hausdorff_pct",
+            "f_score_0.5pct", "f_score_1pct", "flipped", "watertight", "components", "genus"]
+    print("\n| " + " | ".join(keys) + " |")
+    print("|" + "---|" * len(keys))
+    for r in rows:
+        cells = [r.get("error", "")[:60] if k == "seconds" and "error" in r else r.get(k, "")
+                 for k in keys]
+        print("| " + " | ".join(str(c) for c in cells) + " |")
+
+
+if __name__ == "__main__":
+    main()

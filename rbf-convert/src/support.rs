@@ -1,0 +1,59 @@
+//! Pieces of a reconstructed surface that the scan shows, and pieces it does not.
+
+use rbf_cloud::distances_to_cloud;
+use rbf_mesh::{MeshError, TriMesh};
+
+/// The share of a piece's vertices that must lie within the reach of the scan for the piece to
+/// be kept.
+const SUPPORTED_SHARE: f64 = 0.5;
+
+/// The pieces of `mesh` that the scan supports: those with at least half their vertices within
+/// `reach` of a scan point. An implicit surface fitted to a scan may close small bubbles far
+/// from every point (where nothing constrains f); no scanned surface lies there. Returns the
+/// kept mesh and how many pieces were dropped; the largest piece is always kept.
+///
+/// ```
+/// use rbf_convert::supported_pieces;
+/// use rbf_mesh::TriMesh;
+/// // A triangle where the points are, and one far away.
+/// let mesh = TriMesh::new(
+///     vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [9.0, 0.0, 0.0], [9.5, 0.0, 0.0], [9.0, 0.5, 0.0]],
+///     vec![[0, 1, 2], [3, 4, 5]],
+/// ).unwrap();
+/// let points = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+/// let (kept, dropped) = supported_pieces(&mesh, &points, 0.1).unwrap();
+/// assert_eq!((kept.triangles().len(), dropped), (1, 1));
+/// ```
+pub fn supported_pieces(
+    mesh: &TriMesh,
+    points: &[[f64; 3]],
+    reach: f64,
+) -> Result<(TriMesh, usize), MeshError> {
+    let pieces = mesh.components();
+    if pieces.len() <= 1 {
+        return Ok((mesh.clone(), 0));
+    }
+    let distances = distances_to_cloud(points, mesh.positions());
+    let triangles = mesh.triangles();
+    let mut keep = Vec::new();
+    let mut dropped = 0;
+    for (i, piece) in pieces.iter().enumerate() {
+        let mut vertices: Vec<u32> = piece.iter().flat_map(|&t| triangles[t]).collect();
+        vertices.sort_unstable();
+        vertices.dedup();
+        let near = vertices
+            .iter()
+            .filter(|&&v| distances[v as usize] <= reach)
+            .count();
+        if i == 0 || near as f64 >= SUPPORTED_SHARE * vertices.len() as f64 {
+            keep.extend_from_slice(piece);
+        } else {
+            dropped += 1;
+        }
+    }
+    if dropped == 0 {
+        return Ok((mesh.clone(), 0));
+    }
+    keep.sort_unstable();
+    Ok((mesh.with_triangles(&keep)?, dropped))
+}
