@@ -23,8 +23,9 @@ pub struct Orientation {
 }
 
 /// Orients `normals` (unit or zero vectors at `points`) consistently over the graph of
-/// `neighbours`, and outward: in each connected piece, the point farthest from the piece's
-/// centroid has its normal pointing away from it.
+/// `neighbours` (propagated from each connected piece's point farthest from its centroid), and
+/// outward: each piece as a whole points away from its centroid (Σ (p − c)·n > 0, which is
+/// three times the enclosed volume for a closed surface sampled evenly).
 ///
 /// ```
 /// use rbf_cloud::{Neighbours, orient_normals};
@@ -68,6 +69,16 @@ pub fn orient_normals(
             }
             sign[child] = if agrees { sign[parent] } else { -sign[parent] };
             graph.push_edges(points, normals, child, &mut heap);
+        }
+        // The whole piece points out if Σ (p − c)·n > 0: over a closed surface ∫ (x − c)·n dA
+        // is three times the volume. One seed's normal may be nearly tangent (noise), the sum
+        // is not.
+        let flux: f64 = piece
+            .iter()
+            .map(|&i| sign[i] * dot(normals[i], sub(points[i], centre)))
+            .sum();
+        if flux < 0.0 {
+            piece.iter().for_each(|&i| sign[i] = -sign[i]);
         }
         // A piece the graph could not reach from its seed cannot happen: `piece` is the
         // seed's own component.

@@ -151,9 +151,8 @@ pub fn reconstruct(
         }
         _ => (estimate_normals(&kept, &near), true),
     };
-    let oriented = orient_normals(&kept, &unoriented, &near);
     let longest = longest_side(&kept);
-    let noise = median_quadric_residual(&kept, &oriented.normals, &near) / longest;
+    let noise = median_quadric_residual(&kept, &unoriented, &near) / longest;
     let tolerance = settings
         .tolerance
         .unwrap_or_else(|| (3.0 * noise).max(MIN_TOLERANCE));
@@ -164,11 +163,22 @@ pub fn reconstruct(
         other => other,
     };
     // Noise above what a clean scan's curvature shows: each point moves onto the plane of its
-    // neighbourhood (its centroid and normal), which averages the noise across the plane away.
-    let smoothed: Vec<[f64; 3]> = if noise > SMOOTH_ABOVE {
-        project_onto_local_planes(&kept, &oriented.normals, &near)
+    // neighbourhood (its centroid and normal), which averages the noise across the plane away;
+    // estimated normals are estimated again from the smoothed points, and the orientation
+    // follows their edges (noisy edges mislead its mirrored-normal predictions).
+    let (smoothed, oriented) = if noise > SMOOTH_ABOVE {
+        let smoothed = project_onto_local_planes(&kept, &unoriented, &near);
+        let near = Neighbours::new(&smoothed, settings.neighbours.max(3));
+        let normals = if estimated {
+            estimate_normals(&smoothed, &near)
+        } else {
+            unoriented
+        };
+        let oriented = orient_normals(&smoothed, &normals, &near);
+        (smoothed, oriented)
     } else {
-        kept.clone()
+        let oriented = orient_normals(&kept, &unoriented, &near);
+        (kept.clone(), oriented)
     };
     // Dense scans are thinned to an even spread first: constraints closer than the scan's
     // detail only make the fits ill-conditioned.
@@ -204,14 +214,34 @@ pub fn reconstruct(
     };
     let spread_points: Vec<[f64; 3]> = constraints.iter().map(|c| c.position).collect();
     let spread_normals: Vec<[f64; 3]> = constraints.iter().map(|c| unit(c.normal)).collect();
-    let outside: Vec<Constraint<3>> = clear_offsets(&spread_points, &spread_normals, distance)
-        .iter()
-        .zip(spread_points.iter().zip(&spread_normals))
-        .filter(|([_, out], _)| *out > 0.0)
-        .map(|([_, out], (p, n))| {
-            Constraint::exterior(core::array::from_fn(|k| p[k] + out * n[k]), -out / distance)
-        })
-        .collect();
+    let mut outside: Vec<Constraint<3>> = Vec::new();
+    let mut nearer = 0.0;
+    for reach in OUTSIDE_REACH {
+        let clear = clear_offsets(&spread_points, &spread_normals, reach * distance);
+        // A farther probe halved back to a nearer one's place is left to the nearer one.
+        let beyond = nearer * distance;
+        nearer = reach;
+        outside.extend(
+            clear
+                .iter()
+                .zip(spread_points.iter().zip(&spread_normals))
+                .filter(|([_, out], _)| *out > beyond)
+                .map(|([_, out], (p, n))| {
+                    let q = core::array::from_fn(|k| p[k] + out * n[k]);
+                    Constraint::exterior(q, -out / distance)
+                }),
+        );
+    }
+    // And the 26 points around the box grown by a fifth (corners, edges, faces), where the
+    // scan must be closed off too.
+    let shell = grown_box_shell(&kept, longest);
+    let reach = rbf_cloud::distances_to_cloud(&spread_points, &shell);
+    outside.extend(
+        shell
+            .iter()
+            .zip(reach)
+            .map(|(&q, r)| Constraint::exterior(q, -r.max(distance) / distance)),
+    );
     let at: Vec<[f64; 3]> = outside.iter().map(|c| c.position).collect();
     let mut added = vec![false; outside.len()];
     let mut values = vec![0.0; at.len()];
@@ -244,18 +274,9 @@ pub fn reconstruct(
         *nearest.select_nth_unstable_by(middle, f64::total_cmp).1
     };
     let support_reach = (3.0 * spacing).max(2.0 * tolerance * longest);
-    // Outside means negative: check the corners of the box grown by a fifth of its side.
-    let (lo, hi) = bounds(&kept);
+    // Outside means negative: check the shell around the box.
     let view = fit.interpolant.view();
-    for corner in 0..8 {
-        let at: [f64; 3] = core::array::from_fn(|d| {
-            let pad = 0.2 * (hi[d] - lo[d]).max(0.2 * longest);
-            if corner >> d & 1 == 1 {
-                hi[d] + pad
-            } else {
-                lo[d] - pad
-            }
-        });
+    for at in shell {
         let value = view.value(&at);
         if !(value < 0.0) {
             return Err(ConvertError::NotClosed { at, value });
@@ -284,8 +305,30 @@ pub fn reconstruct(
     Ok((model, summary))
 }
 
+/// The 26 points of the 3 × 3 × 3 grid over the points' box grown by a fifth of each side (at
+/// least a twenty-fifth of the longest), but its centre.
+fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
+    let (lo, hi) = bounds(points);
+    let pad: [f64; 3] = core::array::from_fn(|d| 0.2 * (hi[d] - lo[d]).max(0.2 * longest));
+    let mut out = Vec::with_capacity(26);
+    for i in 0..27 {
+        let steps = [i % 3, i / 3 % 3, i / 9];
+        if steps == [1, 1, 1] {
+            continue;
+        }
+        out.push(core::array::from_fn(|d| {
+            let (a, b) = (lo[d] - pad[d], hi[d] + pad[d]);
+            a + 0.5 * steps[d] as f64 * (b - a)
+        }));
+    }
+    out
+}
+
+/// How far outside the scan f is probed, in normal offsets.
+const OUTSIDE_REACH: [f64; 2] = [1.0, 8.0];
+
 /// Rounds of outside constraints, and the most added in one.
-const OUTSIDE_ROUNDS: usize = 4;
+const OUTSIDE_ROUNDS: usize = 8;
 const OUTSIDE_PER_ROUND: usize = 400;
 
 fn unit(v: [f64; 3]) -> [f64; 3] {
