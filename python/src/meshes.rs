@@ -5,7 +5,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rbf_convert::{
     ConvertError, IterativeSettings, NormalSettings, ReconstructSettings, convert_iterative,
-    convert_normals, mesh_resolution, reconstruct,
+    convert_normals, mesh_resolution, reconstruct, scan_mesh,
 };
 use rbf_core::NormalOffset;
 use rbf_mesh::{
@@ -240,20 +240,12 @@ pub(crate) fn _reconstruct<'py>(
     let resolution = resolution
         .map(|r| count(r, 2..=2048, "resolution"))
         .transpose()?;
-    let (model, report, mesh, resolution) = py
+    let (model, report, mesh, resolution, bubbles) = py
         .detach(|| {
             let (model, report) = reconstruct(&positions, normals.as_deref(), &settings)?;
             let resolution = resolution.unwrap_or_else(|| mesh_resolution(&positions));
-            let polygonize = PolygonizeSettings {
-                resolution: Resolution::Cells(resolution),
-                ..Default::default()
-            };
-            let (mesh, _) = polygonize_continuation(
-                &model.interpolant.view(),
-                &surface_seeds(&model),
-                &polygonize,
-            )?;
-            Ok::<_, ConvertError>((model, report, mesh, resolution))
+            let (mesh, bubbles) = scan_mesh(&model, &report, &positions, resolution)?;
+            Ok::<_, ConvertError>((model, report, mesh, resolution, bubbles))
         })
         .map_err(bad)?;
     let d = PyDict::new(py);
@@ -268,6 +260,8 @@ pub(crate) fn _reconstruct<'py>(
     d.set_item("largest_miss", report.largest_miss)?;
     d.set_item("within_tolerance", report.within_tolerance)?;
     d.set_item("resolution", resolution)?;
+    d.set_item("outside_added", report.outside_added)?;
+    d.set_item("bubbles_dropped", bubbles)?;
     let check = mesh.check();
     d.set_item("watertight", check.is_watertight())?;
     d.set_item("genus", check.genus)?;

@@ -6,9 +6,7 @@ use std::time::Instant;
 
 use clap::Args;
 use rbf_convert::{ReconstructSettings, reconstruct};
-use rbf_mesh::{
-    PointCloud, PolygonizeSettings, Resolution, polygonize_continuation, surface_seeds, write_mesh,
-};
+use rbf_mesh::{PointCloud, write_mesh};
 
 use crate::common::{read_text, spinner, write_atomically};
 use crate::failure::{BAD_INPUT, Failure, USAGE};
@@ -91,21 +89,11 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     let resolution = args
         .resolution
         .unwrap_or_else(|| rbf_convert::mesh_resolution(&points));
-    let polygonize = PolygonizeSettings {
-        resolution: Resolution::Cells(resolution),
-        ..Default::default()
-    };
     let bar = spinner(quiet, format!("polygonizing at {resolution}"));
-    let meshed = polygonize_continuation(
-        &model.interpolant.view(),
-        &surface_seeds(&model),
-        &polygonize,
-    );
-    bar.finish_and_clear();
-    let (mesh, _) = meshed.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
     // Bubbles that no scanned point is near are not part of the scanned surface.
-    let (mesh, bubbles) = rbf_convert::supported_pieces(&mesh, &points, report.support_reach)
-        .map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
+    let meshed = rbf_convert::scan_mesh(&model, &report, &points, resolution);
+    bar.finish_and_clear();
+    let (mesh, bubbles) = meshed.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
     write_mesh(&args.output, &mesh).map_err(|e| Failure::mesh(&e))?;
     if let Some(path) = &args.model {
         write_atomically(path, model.to_json().as_bytes())?;

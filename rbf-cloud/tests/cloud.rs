@@ -262,3 +262,28 @@ proptest! {
         prop_assert!(share >= 0.995, "{}", share);
     }
 }
+
+/// A sphere whose given normals all point in, but whose farthest point's normal is nearly
+/// tangent (as noise leaves it): the piece still comes out pointing out as a whole.
+#[test]
+fn a_piece_points_out_as_a_whole_whatever_its_seed_normal() {
+    let (mut points, truth) = sphere(2000, [0.0; 3], 1.0);
+    let mut given: Vec<[f64; 3]> = truth.iter().map(|t| [-t[0], -t[1], -t[2]]).collect();
+    // The farthest point from the centroid, with a normal a hair outward of tangent.
+    points[0] = truth[0].map(|c| 1.01 * c);
+    let t = truth[0];
+    let tangent = if t[0].abs() < 0.9 {
+        [0.0, -t[2], t[1]]
+    } else {
+        [-t[1], t[0], 0.0]
+    };
+    let length = (tangent[0].powi(2) + tangent[1].powi(2) + tangent[2].powi(2)).sqrt();
+    given[0] = core::array::from_fn(|k| tangent[k] / length + 0.01 * t[k]);
+    let o = orient_normals(&points, &given, &Neighbours::new(&points, 10));
+    let outward = o.normals[1..]
+        .iter()
+        .zip(&truth[1..])
+        .filter(|(n, t)| n[0] * t[0] + n[1] * t[1] + n[2] * t[2] > 0.0)
+        .count();
+    assert_eq!(outward, truth.len() - 1);
+}

@@ -89,7 +89,7 @@ pub struct ReconstructReport {
     /// [`reconstruct`]).
     pub outside_added: usize,
     /// How far from the scan a piece of the surface may lie and still count as shown by it
-    /// (for [`crate::supported_pieces`]): three times the median spacing of the points, or twice
+    /// (for [`crate::supported_pieces`]): one and a half times the median spacing of the points, or twice
     /// the tolerance if that is more, in the points' units.
     pub support_reach: f64,
 }
@@ -216,10 +216,12 @@ pub fn reconstruct(
     let spread_normals: Vec<[f64; 3]> = constraints.iter().map(|c| unit(c.normal)).collect();
     let mut outside: Vec<Constraint<3>> = Vec::new();
     let mut nearer = 0.0;
+    // Probes beyond where the surface may pass (the tolerance), or they would pin it.
+    let probe = distance.max(3.0 * tolerance * longest);
     for reach in OUTSIDE_REACH {
-        let clear = clear_offsets(&spread_points, &spread_normals, reach * distance);
+        let clear = clear_offsets(&spread_points, &spread_normals, reach * probe);
         // A farther probe halved back to a nearer one's place is left to the nearer one.
-        let beyond = nearer * distance;
+        let beyond = nearer * probe;
         nearer = reach;
         outside.extend(
             clear
@@ -273,7 +275,7 @@ pub fn reconstruct(
         let middle = nearest.len() / 2;
         *nearest.select_nth_unstable_by(middle, f64::total_cmp).1
     };
-    let support_reach = (3.0 * spacing).max(2.0 * tolerance * longest);
+    let support_reach = (1.5 * spacing).max(2.0 * tolerance * longest);
     // Outside means negative: check the shell around the box.
     let view = fit.interpolant.view();
     for at in shell {
@@ -325,7 +327,7 @@ fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
 }
 
 /// How far outside the scan f is probed, in normal offsets.
-const OUTSIDE_REACH: [f64; 2] = [1.0, 8.0];
+const OUTSIDE_REACH: [f64; 1] = [1.0];
 
 /// Rounds of outside constraints, and the most added in one.
 const OUTSIDE_ROUNDS: usize = 8;

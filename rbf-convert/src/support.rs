@@ -1,7 +1,12 @@
 //! Pieces of a reconstructed surface that the scan shows, and pieces it does not.
 
 use rbf_cloud::distances_to_cloud;
-use rbf_mesh::{MeshError, TriMesh};
+use rbf_core::Model;
+use rbf_mesh::{
+    MeshError, PolygonizeSettings, Resolution, TriMesh, polygonize_continuation, surface_seeds,
+};
+
+use crate::{ConvertError, ReconstructReport};
 
 /// The share of a piece's vertices that must lie within the reach of the scan for the piece to
 /// be kept.
@@ -56,4 +61,38 @@ pub fn supported_pieces(
     }
     keep.sort_unstable();
     Ok((mesh.with_triangles(&keep)?, dropped))
+}
+
+/// The mesh of a reconstructed scan: `model` (from [`crate::reconstruct`], with its `report`)
+/// polygonized by continuation from its constraints at `resolution` cubes across, without the
+/// pieces no point of the scan is near ([`supported_pieces`]). Returns the mesh and how many
+/// pieces were dropped.
+///
+/// ```
+/// use rbf_convert::{ReconstructSettings, reconstruct, scan_mesh};
+/// let points: Vec<[f64; 3]> = (0..800)
+///     .map(|i| {
+///         let z = 1.0 - (2 * i + 1) as f64 / 800.0;
+///         let (t, s) = (2.399963 * i as f64, (1.0 - z * z).sqrt());
+///         [s * t.cos(), s * t.sin(), z]
+///     })
+///     .collect();
+/// let (model, report) = reconstruct(&points, None, &ReconstructSettings::default()).unwrap();
+/// let (mesh, dropped) = scan_mesh(&model, &report, &points, 32).unwrap();
+/// assert!(mesh.check().is_watertight());
+/// assert_eq!(dropped, 0);
+/// ```
+pub fn scan_mesh(
+    model: &Model<3>,
+    report: &ReconstructReport,
+    points: &[[f64; 3]],
+    resolution: usize,
+) -> Result<(TriMesh, usize), ConvertError> {
+    let settings = PolygonizeSettings {
+        resolution: Resolution::Cells(resolution),
+        ..Default::default()
+    };
+    let (mesh, _) =
+        polygonize_continuation(&model.interpolant.view(), &surface_seeds(model), &settings)?;
+    Ok(supported_pieces(&mesh, points, report.support_reach)?)
 }

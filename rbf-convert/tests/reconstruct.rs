@@ -106,3 +106,43 @@ fn flat_and_tiny_clouds_are_refused_with_what_they_are() {
         Err(ConvertError::Flat { shape: "point" })
     ));
 }
+
+/// A scan as users have them: two holes, one side three times as dense as the other, a few
+/// outliers. The surface comes out closed, one piece, with the torus's hole, close to the torus
+/// everywhere (holes filled smoothly), once pieces that no point is near are dropped.
+#[test]
+fn a_scan_with_holes_uneven_density_and_outliers_comes_out_one_closed_torus() {
+    let (all, _) = torus(9000);
+    let holes = [[1.4, 0.0, 0.0], [-0.6, 0.0, 0.3]];
+    let mut points: Vec<[f64; 3]> = all
+        .iter()
+        .enumerate()
+        .filter(|(i, p)| p[0] > 0.0 || i % 3 == 0)
+        .filter(|(_, p)| {
+            holes.iter().all(|h| {
+                let d2: f64 = (0..3).map(|k| (p[k] - h[k]).powi(2)).sum();
+                d2 > 0.25 * 0.25
+            })
+        })
+        .map(|(_, p)| *p)
+        .collect();
+    for i in 0..15 {
+        let t = i as f64;
+        points.push([1.7 * t.sin(), 1.7 * (1.3 * t).cos(), 0.6 * (0.7 * t).sin()]);
+    }
+    let (model, report) = reconstruct(&points, None, &ReconstructSettings::default()).unwrap();
+    let (mesh, dropped) = rbf_convert::scan_mesh(&model, &report, &points, 64).unwrap();
+    let r = mesh.check();
+    assert!(r.is_watertight(), "{r:?}");
+    assert_eq!(
+        (r.genus, r.components),
+        (Some(1), 1),
+        "{report:?}, {dropped} dropped"
+    );
+    let worst = mesh
+        .positions()
+        .iter()
+        .map(|p| (((p[0].hypot(p[1]) - 1.0).powi(2) + p[2] * p[2]).sqrt() - 0.4).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 0.05, "a vertex {worst} from the torus");
+}
