@@ -13,9 +13,10 @@ use crate::{ConvertError, ReconstructReport};
 const SUPPORTED_SHARE: f64 = 0.5;
 
 /// The pieces of `mesh` that the scan supports: those with at least half their vertices within
-/// `reach` of a scan point. An implicit surface fitted to a scan may close small bubbles far
-/// from every point (where nothing constrains f); no scanned surface lies there. Returns the
-/// kept mesh and how many pieces were dropped; the largest piece is always kept.
+/// `reach` of a scan point, and wider than twice the reach (finer than that, the scan cannot
+/// show a piece). An implicit surface fitted to a scan may close small bubbles far from every
+/// point (where nothing constrains f); no scanned surface lies there. Returns the kept mesh and
+/// how many pieces were dropped; the largest piece is always kept.
 ///
 /// ```
 /// use rbf_convert::supported_pieces;
@@ -50,7 +51,17 @@ pub fn supported_pieces(
             .iter()
             .filter(|&&v| distances[v as usize] <= reach)
             .count();
-        if i == 0 || near as f64 >= SUPPORTED_SHARE * vertices.len() as f64 {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &v in &vertices {
+            let p = mesh.positions()[v as usize];
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let width = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+        let shown = near as f64 >= SUPPORTED_SHARE * vertices.len() as f64 && width > 2.0 * reach;
+        if i == 0 || shown {
             keep.extend_from_slice(piece);
         } else {
             dropped += 1;
