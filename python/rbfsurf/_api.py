@@ -222,14 +222,17 @@ def reconstruct(
 ) -> Union[Tuple[np.ndarray, np.ndarray, Model], Tuple[np.ndarray, np.ndarray, Model, dict]]:
     """A closed surface from a scan, as ``rbf reconstruct`` makes it: ``(vertices, faces,
     model)``, and with ``return_report`` a dict of what was done (outliers dropped, normals
-    estimated and flipped, noise, centres, watertight, genus, components).
+    estimated and flipped, noise, centres, outside constraints added, bubbles dropped,
+    watertight, genus, components).
 
     ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes). Outliers
     are dropped unless ``keep_outliers``; every normal is oriented consistently and outward;
     greedily chosen points carry normal constraints until the surface passes within
     ``tolerance`` (a fraction of the box's longest side; default three times the measured
-    noise, at least 2.5e-3) of every point, using at most ``max_centres``; the mesh is
-    polygonized at ``resolution`` cubes across the box (default: about the points' spacing).
+    noise, at least 2.5e-3) of every point, using at most ``max_centres``; where f is not
+    negative just outside the scan, outside constraints are added; the mesh is polygonized at
+    ``resolution`` cubes across the box (default: about the points' spacing), without the
+    bubbles that no point of the scan is near.
 
     >>> import numpy as np, rbfsurf
     >>> i = np.arange(2000) + 0.5

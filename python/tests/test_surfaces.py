@@ -141,6 +141,26 @@ def test_reconstruct_a_scan_without_normals():
     assert (report["watertight"], report["genus"], report["components"]) == (True, 1, 1)
     assert vertices.shape[1] == 3 and faces.shape[1] == 3 and faces.max() < len(vertices)
     assert model([[1.0, 0.0, 0.0]])[0] > 0 > model([[0.0, 0.0, 0.0]])[0]
+    assert report["outside_added"] >= 0 and report["bubbles_dropped"] >= 0
+
+
+def test_reconstruct_a_scan_with_holes_and_uneven_density():
+    n = 9000
+    golden = 0.5 * (5**0.5 - 1)
+    u = 2 * np.pi * np.arange(n) / n
+    v = 2 * np.pi * ((np.arange(n) * golden) % 1.0)
+    r = 1 + 0.4 * np.cos(v)
+    points = np.c_[r * np.cos(u), r * np.sin(u), 0.4 * np.sin(v)]
+    keep = (points[:, 0] > 0) | (np.arange(n) % 3 == 0)
+    for hole in ([1.4, 0.0, 0.0], [-0.6, 0.0, 0.3]):
+        keep &= np.linalg.norm(points - hole, axis=1) > 0.25
+    vertices, faces, _, report = rbfsurf.reconstruct(
+        points[keep], resolution=64, return_report=True
+    )
+    assert (report["watertight"], report["genus"], report["components"]) == (True, 1, 1)
+    # Every vertex near the torus, the holes closed smoothly.
+    tube = np.hypot(np.hypot(vertices[:, 0], vertices[:, 1]) - 1, vertices[:, 2])
+    assert np.abs(tube - 0.4).max() < 0.05
 
 
 def test_reconstruct_refuses_a_flat_cloud():

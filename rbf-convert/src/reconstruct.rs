@@ -327,7 +327,7 @@ fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
 }
 
 /// How far outside the scan f is probed, in normal offsets.
-const OUTSIDE_REACH: [f64; 2] = [1.0, 4.0];
+const OUTSIDE_REACH: [f64; 1] = [1.0];
 
 /// Rounds of outside constraints, and the most added in one.
 const OUTSIDE_ROUNDS: usize = 8;
