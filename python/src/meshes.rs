@@ -8,10 +8,7 @@ use rbf_convert::{
     convert_normals, mesh_resolution, reconstruct, scan_mesh,
 };
 use rbf_core::NormalOffset;
-use rbf_mesh::{
-    PolygonizeSettings, Resolution, TriMesh, VoxelMethod, VoxelSettings, polygonize_continuation,
-    signed_distance, surface_seeds, voxelize,
-};
+use rbf_mesh::{TriMesh, VoxelMethod, VoxelSettings, signed_distance, voxelize};
 
 use crate::arrays::{Floats, count, mesh_arrays, owned, triangles};
 use crate::error::bad;
