@@ -19,8 +19,10 @@ given normals are checked the same way and flipped ones fixed). A subset of the 
 greedily then carries normal constraints until the surface passes within the tolerance of
 every point: three times the noise the points show about their local planes unless given, so
 a clean scan is followed closely and a noisy one smoothly. Holes are closed by the implicit
-surface itself. The mesh is polygonized with cubes about one point spacing wide (thin parts
-keep their topology).
+surface itself, and where f is not negative just outside the scan, outside constraints hold it
+down. The mesh is polygonized with cubes about one point spacing wide (thin parts keep their
+topology), without bubbles that no point is near; --trim D keeps only the surface within D of
+the points (an open scan's own surface, not what closes it).
 
 Clouds: .ply (ASCII or binary, with or without nx ny nz), .npy (N × 3 or N × 6), .xyz or .txt
 (x y z or x y z nx ny nz per line). Meshes out: .obj, .ply, .stl.
@@ -28,7 +30,8 @@ Clouds: .ply (ASCII or binary, with or without nx ny nz), .npy (N × 3 or N × 6
 Examples:
   rbf reconstruct scan.ply -o surface.obj
   rbf reconstruct scan.xyz -o surface.ply --model scan.json --resolution 256
-  rbf reconstruct noisy.npy -o smooth.stl --tolerance 0.005";
+  rbf reconstruct noisy.npy -o smooth.stl --tolerance 0.005
+  rbf reconstruct face.ply -o face.obj --trim 2.5   (an open scan, in millimetres)";
 
 #[derive(Args, Debug)]
 pub(crate) struct ReconstructArgs {
@@ -53,6 +56,10 @@ pub(crate) struct ReconstructArgs {
     /// Keep every point (no outlier removal).
     #[arg(long)]
     keep_outliers: bool,
+    /// For an open scan (a face, a terrain): drop the surface farther than D from every point
+    /// (in the points' units), leaving an open mesh
+    #[arg(long, value_name = "D")]
+    trim: Option<f64>,
 }
 
 pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
@@ -63,6 +70,14 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
         return Err(Failure::new(
             USAGE,
             format!("--tolerance {t}: the tolerance must be a finite number > 0"),
+        ));
+    }
+    if let Some(d) = args.trim
+        && !(d > 0.0 && d.is_finite())
+    {
+        return Err(Failure::new(
+            USAGE,
+            format!("--trim {d}: the distance must be a finite number > 0"),
         ));
     }
     if args.max_centres < 10 {
@@ -94,6 +109,15 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     let meshed = rbf_convert::scan_mesh(&model, &report, &points, resolution);
     bar.finish_and_clear();
     let (mesh, bubbles) = meshed.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
+    let mesh = match args.trim {
+        Some(d) => rbf_convert::trimmed(&mesh, &points, d).map_err(|e| {
+            Failure::new(
+                BAD_INPUT,
+                format!("{source}: --trim {d} leaves no surface ({e}): the points are farther apart than that"),
+            )
+        })?,
+        None => mesh,
+    };
     write_mesh(&args.output, &mesh).map_err(|e| Failure::mesh(&e))?;
     if let Some(path) = &args.model {
         write_atomically(path, model.to_json().as_bytes())?;

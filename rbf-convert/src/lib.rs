@@ -50,5 +50,5 @@ pub use normals::{NormalReport, NormalSettings, convert_normals};
 pub use poisson::poisson_subset;
 pub use reconstruct::{ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct};
 pub use settings::IterativeSettings;
-pub use support::{scan_mesh, supported_pieces};
+pub use support::{scan_mesh, supported_pieces, trimmed};
 pub use topology::TopologyReport;

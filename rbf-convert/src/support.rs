@@ -107,3 +107,29 @@ pub fn scan_mesh(
         polygonize_continuation(&model.interpolant.view(), &surface_seeds(model), &settings)?;
     Ok(supported_pieces(&mesh, points, report.support_reach)?)
 }
+
+/// The triangles of `mesh` whose corners all lie within `distance` of a scan point: the
+/// surface of an open scan (a face, a terrain) without what the implicit surface adds to close
+/// it; then, as in [`supported_pieces`], crumbs narrower than twice the distance that the cut
+/// leaves are dropped. The result is open; an error if nothing is left.
+///
+/// ```
+/// use rbf_convert::trimmed;
+/// use rbf_mesh::TriMesh;
+/// let mesh = TriMesh::new(
+///     vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [9.0, 0.0, 0.0]],
+///     vec![[0, 1, 2], [1, 3, 2]],
+/// ).unwrap();
+/// let points = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+/// assert_eq!(trimmed(&mesh, &points, 0.1).unwrap().triangles().len(), 1);
+/// ```
+pub fn trimmed(mesh: &TriMesh, points: &[[f64; 3]], distance: f64) -> Result<TriMesh, MeshError> {
+    let near: Vec<bool> = distances_to_cloud(points, mesh.positions())
+        .into_iter()
+        .map(|d| d <= distance)
+        .collect();
+    let keep: Vec<usize> = (0..mesh.triangles().len())
+        .filter(|&t| mesh.triangles()[t].iter().all(|&v| near[v as usize]))
+        .collect();
+    Ok(supported_pieces(&mesh.with_triangles(&keep)?, points, distance)?.0)
+}
