@@ -218,6 +218,7 @@ def reconstruct(
     max_centres: int = 5000,
     keep_outliers: bool = False,
     resolution: Optional[int] = None,
+    trim: Optional[float] = None,
     return_report: bool = False,
 ) -> Union[Tuple[np.ndarray, np.ndarray, Model], Tuple[np.ndarray, np.ndarray, Model, dict]]:
     """A closed surface from a scan, as ``rbf reconstruct`` makes it: ``(vertices, faces,
@@ -232,7 +233,8 @@ def reconstruct(
     noise, at least 2.5e-3) of every point, using at most ``max_centres``; where f is not
     negative just outside the scan, outside constraints are added; the mesh is polygonized at
     ``resolution`` cubes across the box (default: about the points' spacing), without the
-    bubbles that no point of the scan is near.
+    bubbles that no point of the scan is near. For an open scan, ``trim`` (a distance in the
+    points' units) keeps only the surface within it of the points: the mesh is then open.
 
     >>> import numpy as np, rbfsurf
     >>> i = np.arange(2000) + 0.5
@@ -251,6 +253,7 @@ def reconstruct(
         max_centres=max_centres,
         keep_outliers=keep_outliers,
         resolution=resolution,
+        trim=trim,
     )
     return (v, f, model, report) if return_report else (v, f, model)
 

@@ -5,7 +5,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rbf_convert::{
     ConvertError, IterativeSettings, NormalSettings, ReconstructSettings, convert_iterative,
-    convert_normals, mesh_resolution, reconstruct, scan_mesh,
+    convert_normals, mesh_resolution, reconstruct, scan_mesh, trimmed,
 };
 use rbf_core::NormalOffset;
 use rbf_mesh::{TriMesh, VoxelMethod, VoxelSettings, signed_distance, voxelize};
@@ -188,8 +188,8 @@ pub(crate) fn _voxelize<'py>(
 /// A scan to a closed surface (see ``rbfsurf.reconstruct``): the mesh, the model and a dict
 /// of what was done.
 #[pyfunction]
-#[pyo3(signature = (points, normals=None, *, tolerance=None, max_centres=5000, keep_outliers=false, resolution=None))]
-#[allow(clippy::type_complexity)]
+#[pyo3(signature = (points, normals=None, *, tolerance=None, max_centres=5000, keep_outliers=false, resolution=None, trim=None))]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
 pub(crate) fn _reconstruct<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
@@ -198,6 +198,7 @@ pub(crate) fn _reconstruct<'py>(
     max_centres: i64,
     keep_outliers: bool,
     resolution: Option<i64>,
+    trim: Option<f64>,
 ) -> PyResult<(
     Bound<'py, PyAny>,
     Bound<'py, PyAny>,
@@ -228,6 +229,11 @@ pub(crate) fn _reconstruct<'py>(
             "tolerance must be a finite number > 0, not {t}"
         )));
     }
+    if let Some(d) = trim
+        && !(d > 0.0 && d.is_finite())
+    {
+        return Err(bad(format!("trim must be a finite number > 0, not {d}")));
+    }
     let settings = ReconstructSettings {
         tolerance,
         max_centres: count(max_centres, 10..=1_000_000, "max_centres")?,
@@ -242,6 +248,10 @@ pub(crate) fn _reconstruct<'py>(
             let (model, report) = reconstruct(&positions, normals.as_deref(), &settings)?;
             let resolution = resolution.unwrap_or_else(|| mesh_resolution(&positions));
             let (mesh, bubbles) = scan_mesh(&model, &report, &positions, resolution)?;
+            let mesh = match trim {
+                Some(d) => trimmed(&mesh, &positions, d)?,
+                None => mesh,
+            };
             Ok::<_, ConvertError>((model, report, mesh, resolution, bubbles))
         })
         .map_err(bad)?;

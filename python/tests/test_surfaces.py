@@ -163,6 +163,25 @@ def test_reconstruct_a_scan_with_holes_and_uneven_density():
     assert np.abs(tube - 0.4).max() < 0.05
 
 
+def test_reconstruct_trims_to_the_points_and_refuses_a_bad_distance():
+    n = 3000
+    golden = 0.5 * (5**0.5 - 1)
+    u = 2 * np.pi * np.arange(n) / n
+    v = 2 * np.pi * ((np.arange(n) * golden) % 1.0)
+    r = 1 + 0.4 * np.cos(v)
+    points = np.c_[r * np.cos(u), r * np.sin(u), 0.4 * np.sin(v)]
+    # Only the upper half of the torus is scanned: trimmed, the lower half is gone.
+    upper = points[points[:, 2] > 0.05]
+    vertices, _, _, report = rbfsurf.reconstruct(
+        upper, resolution=48, trim=0.1, return_report=True
+    )
+    assert not report["watertight"]
+    assert vertices[:, 2].min() > -0.1
+    for bad in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(rbfsurf.RbfError, match="trim"):
+            rbfsurf.reconstruct(upper, trim=bad)
+
+
 def test_reconstruct_refuses_a_flat_cloud():
     flat = np.c_[np.arange(400) % 20, np.arange(400) // 20, np.zeros(400)].astype(float)
     with pytest.raises(rbfsurf.RbfError, match="lie on a plane"):
