@@ -30,6 +30,15 @@ def torus_points(n_major=40, n_minor=20, R=1.0, r=0.4):
     return centre + r * normals, normals
 
 
+def torus_lattice(n):
+    """n points spread over a torus around z (radii 1 and 0.4) by a golden-ratio lattice."""
+    golden = 0.5 * (5**0.5 - 1)
+    u = 2 * np.pi * np.arange(n) / n
+    v = 2 * np.pi * ((np.arange(n) * golden) % 1.0)
+    r = 1 + 0.4 * np.cos(v)
+    return np.c_[r * np.cos(u), r * np.sin(u), 0.4 * np.sin(v)]
+
+
 def sphere_points(n):
     """Fibonacci points on the unit sphere (their own outward normals)."""
     i = np.arange(n) + 0.5

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import rbfsurf
-from conftest import mesh_topology, sphere_points, torus_points
+from conftest import mesh_topology, sphere_points, torus_lattice, torus_points
 
 
 def test_torus_from_oriented_points_polygonizes_watertight_genus_1():
@@ -130,12 +130,7 @@ def test_session_takes_the_sculpt_command_language():
 
 
 def test_reconstruct_a_scan_without_normals():
-    n = 3000
-    golden = 0.5 * (5**0.5 - 1)
-    u = 2 * np.pi * np.arange(n) / n
-    v = 2 * np.pi * ((np.arange(n) * golden) % 1.0)
-    r = 1 + 0.4 * np.cos(v)
-    points = np.c_[r * np.cos(u), r * np.sin(u), 0.4 * np.sin(v)]
+    points = torus_lattice(3000)
     vertices, faces, model, report = rbfsurf.reconstruct(points, resolution=64, return_report=True)
     assert report["normals_estimated"] and report["within_tolerance"]
     assert (report["watertight"], report["genus"], report["components"]) == (True, 1, 1)
@@ -146,11 +141,7 @@ def test_reconstruct_a_scan_without_normals():
 
 def test_reconstruct_a_scan_with_holes_and_uneven_density():
     n = 9000
-    golden = 0.5 * (5**0.5 - 1)
-    u = 2 * np.pi * np.arange(n) / n
-    v = 2 * np.pi * ((np.arange(n) * golden) % 1.0)
-    r = 1 + 0.4 * np.cos(v)
-    points = np.c_[r * np.cos(u), r * np.sin(u), 0.4 * np.sin(v)]
+    points = torus_lattice(n)
     keep = (points[:, 0] > 0) | (np.arange(n) % 3 == 0)
     for hole in ([1.4, 0.0, 0.0], [-0.6, 0.0, 0.3]):
         keep &= np.linalg.norm(points - hole, axis=1) > 0.25
@@ -164,12 +155,7 @@ def test_reconstruct_a_scan_with_holes_and_uneven_density():
 
 
 def test_reconstruct_trims_to_the_points_and_refuses_a_bad_distance():
-    n = 3000
-    golden = 0.5 * (5**0.5 - 1)
-    u = 2 * np.pi * np.arange(n) / n
-    v = 2 * np.pi * ((np.arange(n) * golden) % 1.0)
-    r = 1 + 0.4 * np.cos(v)
-    points = np.c_[r * np.cos(u), r * np.sin(u), 0.4 * np.sin(v)]
+    points = torus_lattice(3000)
     # Only the upper half of the torus is scanned: trimmed, the lower half is gone.
     upper = points[points[:, 2] > 0.05]
     vertices, _, _, report = rbfsurf.reconstruct(

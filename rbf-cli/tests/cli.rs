@@ -1941,51 +1941,32 @@ fn reconstruct_a_cloud_without_normals_and_refuse_a_flat_one() {
     assert!(!out.exists());
     // --trim: the torus's surface lies within 0.1 of its points everywhere (they cover it), so
     // trimming there keeps it whole; a distance that is no distance is refused.
-    let trimmed = dir.path().join("trimmed.obj");
     let cloud = dir.path().join("torus.xyz");
-    let o = rbf(
-        &[
-            "reconstruct",
-            cloud.to_str().unwrap(),
-            "-o",
-            trimmed.to_str().unwrap(),
-            "--resolution",
-            "64",
-            "--trim",
-            "0.1",
-        ],
-        None,
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("watertight, genus 1"), "{}", stderr(&o));
-    // Closer than the points' spacing (about 0.07), the cut opens the surface and says so.
-    let o = rbf(
-        &[
-            "reconstruct",
-            cloud.to_str().unwrap(),
-            "-o",
-            trimmed.to_str().unwrap(),
-            "--resolution",
-            "64",
-            "--trim",
-            "0.02",
-        ],
-        None,
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains(", open,"), "{}", stderr(&o));
-    for bad in ["0", "-1", "nan"] {
-        let out = dir.path().join(format!("bad-{bad}.obj"));
-        let o = rbf(
+    let trim = |out: &std::path::Path, distance: &str| {
+        rbf(
             &[
                 "reconstruct",
                 cloud.to_str().unwrap(),
                 "-o",
                 out.to_str().unwrap(),
-                &format!("--trim={bad}"),
+                "--resolution",
+                "64",
+                &format!("--trim={distance}"),
             ],
             None,
-        );
+        )
+    };
+    let trimmed = dir.path().join("trimmed.obj");
+    let o = trim(&trimmed, "0.1");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("watertight, genus 1"), "{}", stderr(&o));
+    // Closer than the points' spacing (about 0.07), the cut opens the surface and says so.
+    let o = trim(&trimmed, "0.02");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains(", open,"), "{}", stderr(&o));
+    for bad in ["0", "-1", "nan"] {
+        let out = dir.path().join(format!("bad-{bad}.obj"));
+        let o = trim(&out, bad);
         // A bad option is a usage error (exit 1), as for --tolerance.
         assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
         assert!(stderr(&o).contains("--trim"), "{}", stderr(&o));

@@ -214,26 +214,17 @@ pub fn reconstruct(
     };
     let spread_points: Vec<[f64; 3]> = constraints.iter().map(|c| c.position).collect();
     let spread_normals: Vec<[f64; 3]> = constraints.iter().map(|c| unit(c.normal)).collect();
-    let mut outside: Vec<Constraint<3>> = Vec::new();
-    let mut nearer = 0.0;
     // Probes beyond where the surface may pass (the tolerance), or they would pin it.
     let probe = distance.max(3.0 * tolerance * longest);
-    for reach in OUTSIDE_REACH {
-        let clear = clear_offsets(&spread_points, &spread_normals, reach * probe);
-        // A farther probe halved back to a nearer one's place is left to the nearer one.
-        let beyond = nearer * probe;
-        nearer = reach;
-        outside.extend(
-            clear
-                .iter()
-                .zip(spread_points.iter().zip(&spread_normals))
-                .filter(|([_, out], _)| *out > beyond)
-                .map(|([_, out], (p, n))| {
-                    let q = core::array::from_fn(|k| p[k] + out * n[k]);
-                    Constraint::exterior(q, -out / distance)
-                }),
-        );
-    }
+    let mut outside: Vec<Constraint<3>> = clear_offsets(&spread_points, &spread_normals, probe)
+        .iter()
+        .zip(spread_points.iter().zip(&spread_normals))
+        .filter(|([_, out], _)| *out > 0.0)
+        .map(|([_, out], (p, n))| {
+            let q = core::array::from_fn(|k| p[k] + out * n[k]);
+            Constraint::exterior(q, -out / distance)
+        })
+        .collect();
     // And the 26 points around the box grown by a fifth (corners, edges, faces), where the
     // scan must be closed off too.
     let shell = grown_box_shell(&kept, longest);
@@ -325,9 +316,6 @@ fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
     }
     out
 }
-
-/// How far outside the scan f is probed, in normal offsets.
-const OUTSIDE_REACH: [f64; 1] = [1.0];
 
 /// Rounds of outside constraints, and the most added in one.
 const OUTSIDE_ROUNDS: usize = 8;

@@ -35,11 +35,21 @@ pub fn supported_pieces(
     points: &[[f64; 3]],
     reach: f64,
 ) -> Result<(TriMesh, usize), MeshError> {
-    let pieces = mesh.components();
-    if pieces.len() <= 1 {
+    if mesh.components().len() <= 1 {
         return Ok((mesh.clone(), 0));
     }
     let distances = distances_to_cloud(points, mesh.positions());
+    keep_pieces(mesh, reach, |v| distances[v as usize] <= reach)
+}
+
+/// `mesh` without the pieces (but the largest) that have fewer than half their vertices `near`
+/// or are no wider than twice `reach`, and how many were dropped.
+fn keep_pieces(
+    mesh: &TriMesh,
+    reach: f64,
+    near: impl Fn(u32) -> bool,
+) -> Result<(TriMesh, usize), MeshError> {
+    let pieces = mesh.components();
     let triangles = mesh.triangles();
     let mut keep = Vec::new();
     let mut dropped = 0;
@@ -47,10 +57,7 @@ pub fn supported_pieces(
         let mut vertices: Vec<u32> = piece.iter().flat_map(|&t| triangles[t]).collect();
         vertices.sort_unstable();
         vertices.dedup();
-        let near = vertices
-            .iter()
-            .filter(|&&v| distances[v as usize] <= reach)
-            .count();
+        let supported = vertices.iter().filter(|&&v| near(v)).count();
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         for &v in &vertices {
             let p = mesh.positions()[v as usize];
@@ -60,7 +67,8 @@ pub fn supported_pieces(
             }
         }
         let width = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
-        let shown = near as f64 >= SUPPORTED_SHARE * vertices.len() as f64 && width > 2.0 * reach;
+        let shown =
+            supported as f64 >= SUPPORTED_SHARE * vertices.len() as f64 && width > 2.0 * reach;
         if i == 0 || shown {
             keep.extend_from_slice(piece);
         } else {
@@ -131,5 +139,6 @@ pub fn trimmed(mesh: &TriMesh, points: &[[f64; 3]], distance: f64) -> Result<Tri
     let keep: Vec<usize> = (0..mesh.triangles().len())
         .filter(|&t| mesh.triangles()[t].iter().all(|&v| near[v as usize]))
         .collect();
-    Ok(supported_pieces(&mesh.with_triangles(&keep)?, points, distance)?.0)
+    // Every corner left is within the distance of a point: only the crumbs' width decides.
+    Ok(keep_pieces(&mesh.with_triangles(&keep)?, distance, |_| true)?.0)
 }

@@ -404,19 +404,50 @@ pub fn calibrated<const D: usize>(
             ..FarFieldSettings::default()
         };
         let field = FarField::new(kernel, centres, &settings);
-        let charges = field.charges(weights).ok()?;
-        let mut approx = vec![0.0; sample.len()];
-        field.values(&charges, sample, &mut approx).ok()?;
-        let measured = approx
-            .iter()
-            .zip(&exact)
-            .map(|(a, e)| (a - e).abs())
-            .fold(0.0, f64::max);
+        let (charges, measured) = field.error_at(weights, sample, &exact)?;
         if measured <= error {
             return Some((field, charges, measured));
         }
     }
     None
+}
+
+impl<const D: usize> FarField<D> {
+    /// The charges of `weights` and the largest error of their sums at the `sample` points
+    /// against `exact` values there (as [`calibrated`] measures); `None` on mismatched lengths.
+    ///
+    /// ```
+    /// use rbf_core::{InterpolantView, Kernel};
+    /// use rbf_far::{FarField, FarFieldSettings};
+    /// let centres: Vec<[f64; 3]> = (0..3000).map(|i| [i as f64 * 1e-3, (i % 7) as f64, 0.0]).collect();
+    /// let weights = vec![1e-3; 3000];
+    /// let sample = [[0.5, 0.5, 0.5], [3.0, -1.0, 2.0]];
+    /// let mut exact = [0.0; 2];
+    /// InterpolantView::new(Kernel::Cubic, &centres, &weights, 0.0, [0.0; 3]).unwrap()
+    ///     .values(&sample, &mut exact).unwrap();
+    /// let field = FarField::new(Kernel::Cubic, &centres, &FarFieldSettings { order: 12, ..Default::default() });
+    /// let (_, error) = field.error_at(&weights, &sample, &exact).unwrap();
+    /// assert!(error < 1e-6);
+    /// ```
+    pub fn error_at(
+        &self,
+        weights: &[f64],
+        sample: &[[f64; D]],
+        exact: &[f64],
+    ) -> Option<(Charges, f64)> {
+        let charges = self.charges(weights).ok()?;
+        let mut approx = vec![0.0; sample.len()];
+        self.values(&charges, sample, &mut approx).ok()?;
+        if exact.len() != sample.len() {
+            return None;
+        }
+        let error = approx
+            .iter()
+            .zip(exact)
+            .map(|(a, e)| (a - e).abs())
+            .fold(0.0, f64::max);
+        Some((charges, error))
+    }
 }
 
 fn grid_len<const D: usize>(axes: &[Axis; D]) -> usize {

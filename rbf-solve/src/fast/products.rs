@@ -64,17 +64,12 @@ impl<'a, const D: usize> Products<'a, D> {
     /// values' units) at sampled rows; direct sums if no order is.
     pub(crate) fn far(system: &'a System<D>, trial: &[f64], accuracy: f64) -> Self {
         let points = system.normalized_points();
-        let rows = spread_rows(points.len(), 2 * CERTIFIED_ROWS);
-        let sample: Vec<[f64; D]> = rows.iter().map(|&i| points[i]).collect();
+        let sample = calibration_sample(points);
         match calibrated(system.kernel(), points, trial, &sample, 0.25 * accuracy) {
             Some((field, _, _)) => Self {
-                system,
                 far: Some(field),
                 direct: AtomicBool::new(false),
-                relaxed: Vec::new(),
-                exact_only: AtomicBool::new(false),
-                relaxed_count: AtomicUsize::new(0),
-                count: AtomicUsize::new(0),
+                ..Self::direct(system)
             },
             None => Self::direct(system),
         }
@@ -86,8 +81,7 @@ impl<'a, const D: usize> Products<'a, D> {
     pub(crate) fn relaxed(mut self, trial: &[f64], hmax: f64) -> Self {
         let system = self.system;
         let points = system.normalized_points();
-        let rows = spread_rows(points.len(), 2 * CERTIFIED_ROWS);
-        let sample: Vec<[f64; D]> = rows.iter().map(|&i| points[i]).collect();
+        let sample = calibration_sample(points);
         let mut exact = vec![0.0; sample.len()];
         let measured = InterpolantView::new(system.kernel(), points, trial, 0.0, [0.0; D])
             .and_then(|f| f.par_values_compensated(&sample, &mut exact));
@@ -101,19 +95,10 @@ impl<'a, const D: usize> Products<'a, D> {
                 ..FarFieldSettings::default()
             };
             let field = FarField::new(system.kernel(), points, &settings);
-            let mut approx = vec![0.0; sample.len()];
-            let Ok(()) = field
-                .charges(trial)
-                .and_then(|charges| field.values(&charges, &sample, &mut approx))
-            else {
+            let Some((_, error)) = field.error_at(trial, &sample, &exact) else {
                 continue;
             };
-            let error = approx
-                .iter()
-                .zip(&exact)
-                .map(|(a, e)| (a - e).abs())
-                .fold(0.0, f64::max)
-                / hmax;
+            let error = error / hmax;
             if error < 0.1 && self.relaxed.last().is_none_or(|&(_, e)| error < e) {
                 self.relaxed.push((field, error));
             }
@@ -238,6 +223,14 @@ impl<'a, const D: usize> Products<'a, D> {
             .map(|(&i, f)| (f + system.normalized_smoothing(i) * w[i] - system.values()[i]).abs())
             .fold(0.0, f64::max)
     }
+}
+
+/// The rows where far fields are measured against direct sums: 2000 spread over all.
+fn calibration_sample<const D: usize>(points: &[[f64; D]]) -> Vec<[f64; D]> {
+    spread_rows(points.len(), 2 * CERTIFIED_ROWS)
+        .into_iter()
+        .map(|i| points[i])
+        .collect()
 }
 
 fn affine<const D: usize>(c: &[f64], p: &[f64; D]) -> f64 {
