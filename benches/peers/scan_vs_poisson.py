@@ -178,6 +178,8 @@ def main():
     ap.add_argument("--points", type=int, default=100_000)
     ap.add_argument("--noise", type=float, nargs="+", default=[0.0, 0.002, 0.005])
     ap.add_argument("--depth", type=int, default=None, help="Poisson depth (9, 10 from 5e5)")
+    ap.add_argument("--tools", nargs="+", default=["rbf", "open3d", "meshlab"],
+                    help="which tools to run (rbf, open3d, meshlab)")
     args = ap.parse_args()
     depth = args.depth or (10 if args.points >= 500_000 else 9)
     try:
@@ -196,9 +198,10 @@ def main():
             cloud_path = os.path.join(out_dir, "cloud.npy")
             np.save(cloud_path, cloud)
             scan = dict(mesh=name, points=len(cloud), noise_pct=100 * noise)
-            tools = ["rbf reconstruct", "Open3D Poisson"]
-            if have_meshlab:
-                tools.append("pymeshlab Poisson")
+            tools = [name for key, name in [("rbf", "rbf reconstruct"),
+                                            ("open3d", "Open3D Poisson"),
+                                            ("meshlab", "pymeshlab Poisson")]
+                     if key in args.tools and (key != "meshlab" or have_meshlab)]
             for tool in tools:
                 if tool == "rbf reconstruct":
                     r = run_rbf(cloud_path, out_dir)

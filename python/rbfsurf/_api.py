@@ -223,7 +223,8 @@ def reconstruct(
 ) -> Union[Tuple[np.ndarray, np.ndarray, Model], Tuple[np.ndarray, np.ndarray, Model, dict]]:
     """A closed surface from a scan, as ``rbf reconstruct`` makes it: ``(vertices, faces,
     model)``, and with ``return_report`` a dict of what was done (outliers dropped, normals
-    estimated and flipped, noise, centres, outside constraints added, bubbles dropped,
+    estimated and flipped (``refuted``: reversed by fits; ``disagreeing``: left out), noise,
+    centres, outside constraints added, bubbles dropped,
     watertight, genus, components).
 
     ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes). Outliers

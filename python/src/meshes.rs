@@ -260,6 +260,9 @@ pub(crate) fn _reconstruct<'py>(
     d.set_item("outliers", report.outliers)?;
     d.set_item("normals_estimated", report.normals_estimated)?;
     d.set_item("flipped", report.flipped)?;
+    d.set_item("refuted", report.refuted)?;
+    d.set_item("disagreeing", report.disagreeing)?;
+    d.set_item("contradicted", report.contradicted)?;
     d.set_item("pieces", report.pieces)?;
     d.set_item("noise", report.noise)?;
     d.set_item("tolerance", report.tolerance)?;

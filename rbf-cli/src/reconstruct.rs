@@ -15,9 +15,12 @@ pub(crate) const HELP: &str = "\
 Outliers are dropped (a mean distance to the 20 nearest points more than 2.5 deviations above
 the cloud's), normals estimated from local planes where the cloud has none (16 neighbours) and
 every normal oriented consistently and outward (a minimum spanning tree of the neighbour graph;
-given normals are checked the same way and flipped ones fixed). A subset of the points chosen
-greedily then carries normal constraints until the surface passes within the tolerance of
-every point: three times the noise the points show about their local planes unless given, so
+given normals are checked the same way and flipped ones fixed). A noisy scan is smoothed first:
+its noise is measured on neighbourhoods grown until they reach four times it, each point moves
+onto the plane of such a neighbourhood, and coarse fits to the other points vote on each
+normal's sign. Normals more than 60° from their neighbours' are left out. A subset of the
+points chosen greedily then carries normal constraints until the surface passes within the
+tolerance of every point: three times the measured noise unless given, so
 a clean scan is followed closely and a noisy one smoothly. Holes are closed by the implicit
 surface itself, and where f is not negative just outside the scan, outside constraints hold it
 down. The mesh is polygonized with cubes about one point spacing wide (thin parts keep their
@@ -125,7 +128,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     if !quiet {
         let r = mesh.check();
         eprintln!(
-            "{} points read, {} outliers dropped, normals {} ({} flipped, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {} outliers dropped, normals {} ({} flipped, {} reversed by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             report.outliers,
             if report.normals_estimated {
@@ -134,6 +137,8 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
                 "given"
             },
             report.flipped,
+            report.refuted,
+            report.disagreeing,
             report.pieces,
             report.noise,
             report.tolerance,

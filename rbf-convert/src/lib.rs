@@ -29,6 +29,7 @@
 
 mod blend;
 mod compare;
+mod consensus;
 mod error;
 mod goal;
 mod iterative;

@@ -6,6 +6,15 @@
 //! every point, the tolerance set from the noise the points show about their local planes
 //! (three times it): a clean scan is interpolated closely, a noisy one approximated smoothly.
 //! Holes close by themselves: the implicit function is defined everywhere.
+//!
+//! The greedy fit takes the worst-met points first, and on a noisy scan those are the points
+//! whose normals are wrong: a few hundred of 2·10⁴ (measured on a simulated bunny scan at 0.2 %
+//! noise: 114 of the 120 wrong-signed normals became centres, and the surface came out with
+//! genus 21). So a noisy scan is smoothed on neighbourhoods as wide as its noise asks, its
+//! normals are voted on by fits to the other points ([`crate::consensus`]), normals at odds
+//! with their neighbours are left out, and the greedy fit skips points its surface passes but
+//! faces away from (`GreedySettings::skip_contradicted`). The same scan then comes out with
+//! genus 0, one piece.
 
 use rbf_cloud::{
     Neighbours, clear_offsets, estimate_normals, orient_normals, statistical_outliers,
@@ -71,6 +80,14 @@ pub struct ReconstructReport {
     pub normals_estimated: bool,
     /// Normals (given or estimated) whose sign the orientation reversed.
     pub flipped: usize,
+    /// Normals of a noisy scan reversed because fits to the other points said they point
+    /// inward (after the orientation; see [`reconstruct`]).
+    pub refuted: usize,
+    /// Points left out of the constraints because their normal is more than 60° from the
+    /// mean of their neighbours'.
+    pub disagreeing: usize,
+    /// Points the fitted surface passes but faces the other way from, left out as centres.
+    pub contradicted: usize,
     /// Connected pieces of the neighbour graph.
     pub pieces: usize,
     /// The noise measured: the median over points of the RMS residual of a quadratic height
@@ -152,7 +169,9 @@ pub fn reconstruct(
         _ => (estimate_normals(&kept, &near), true),
     };
     let longest = longest_side(&kept);
-    let noise = median_quadric_residual(&kept, &unoriented, &near) / longest;
+    let k = settings.neighbours.max(3);
+    let (noise, wide) = measure_noise(&kept, &unoriented, &near, estimated);
+    let noise = noise / longest;
     let tolerance = settings
         .tolerance
         .unwrap_or_else(|| (3.0 * noise).max(MIN_TOLERANCE));
@@ -166,29 +185,46 @@ pub fn reconstruct(
     // neighbourhood (its centroid and normal), which averages the noise across the plane away;
     // estimated normals are estimated again from the smoothed points, and the orientation
     // follows their edges (noisy edges mislead its mirrored-normal predictions).
-    let (smoothed, oriented) = if noise > SMOOTH_ABOVE {
-        let smoothed = project_onto_local_planes(&kept, &unoriented, &near);
-        let near = Neighbours::new(&smoothed, settings.neighbours.max(3));
+    let (smoothed, oriented, near) = if noise > SMOOTH_ABOVE {
+        // Planes through neighbourhoods a few noise deep: wider ones for noisier scans.
+        let (wide, planes) = match wide {
+            Some((wide, normals)) => (wide, normals),
+            None => (near.clone(), unoriented),
+        };
+        let wide_k = wide.k();
+        let smoothed = project_onto_local_planes(&kept, &planes, &wide);
+        let near = Neighbours::new(&smoothed, k);
         let normals = if estimated {
-            estimate_normals(&smoothed, &near)
+            if wide_k > k {
+                estimate_normals(&smoothed, &Neighbours::new(&smoothed, wide_k))
+            } else {
+                estimate_normals(&smoothed, &near)
+            }
         } else {
-            unoriented
+            planes
         };
         let oriented = orient_normals(&smoothed, &normals, &near);
-        (smoothed, oriented)
+        (smoothed, oriented, near)
     } else {
         let oriented = orient_normals(&kept, &unoriented, &near);
-        (kept.clone(), oriented)
+        (kept.clone(), oriented, near)
     };
     // Dense scans are thinned to an even spread first: constraints closer than the scan's
     // detail only make the fits ill-conditioned.
     let spread = crate::poisson_subset(&smoothed, THINNED);
-    let constraints: Vec<Constraint<3>> = spread
-        .iter()
-        .map(|&i| (smoothed[i], oriented.normals[i]))
-        .filter(|(_, n)| n.iter().any(|&c| c != 0.0))
-        .map(|(p, n)| Constraint::normal(p, n))
+    // Normals at odds with their neighbourhood (noise near a crease, an isolated wrong sign)
+    // would be the worst-met constraints, and so the first chosen: they are left out.
+    let thinned = spread.len();
+    let spread: Vec<usize> = spread
+        .into_iter()
+        .filter(|&i| agrees_with_neighbours(&oriented.normals, &near, i))
         .collect();
+    let disagreeing = thinned - spread.len();
+    let (spread_points, mut spread_normals): (Vec<[f64; 3]>, Vec<[f64; 3]>) = spread
+        .iter()
+        .map(|&i| (smoothed[i], unit(oriented.normals[i])))
+        .filter(|(_, n)| n.iter().any(|&c| c != 0.0))
+        .unzip();
     let fit_settings = FitSettings {
         normal_offset: offset,
         ..Default::default()
@@ -196,8 +232,35 @@ pub fn reconstruct(
     let greedy = rbf_solve::GreedySettings {
         tolerance,
         max_constraints: settings.max_centres,
+        skip_contradicted: true,
         ..Default::default()
     };
+    let distance = match offset {
+        NormalOffset::Relative(r) => r * longest,
+        NormalOffset::Absolute(a) => a,
+    };
+    // A noisy scan's orientation goes wrong in patches (where it is thin, where noise hides
+    // its edges): fits to its points vote on every point's sign, until few change.
+    let mut refuted = 0;
+    if noise > SMOOTH_ABOVE {
+        for _ in 0..CONSENSUS_PASSES {
+            let now = crate::consensus::flip_against_fits(
+                &spread_points,
+                &mut spread_normals,
+                &fit_settings,
+                2.0 * distance,
+            )?;
+            refuted += now;
+            if now * 1000 < spread_points.len() {
+                break;
+            }
+        }
+    }
+    let constraints: Vec<Constraint<3>> = spread_points
+        .iter()
+        .zip(&spread_normals)
+        .map(|(&p, &n)| Constraint::normal(p, n))
+        .collect();
     let (mut fit, report) = rbf_solve::fit_greedy(&constraints, &fit_settings, &greedy, |_| {})?;
     let largest_miss = report.rounds.last().map_or(f64::NAN, |r| r.max_error);
     // Normal constraints pin f just inside each chosen point, but nothing holds it negative
@@ -208,12 +271,6 @@ pub fn reconstruct(
     // there, an outside constraint goes there (its value at the offset's slope) and the chosen
     // constraints are fitted again.
     let mut fitted = report.constraints.clone();
-    let distance = match offset {
-        NormalOffset::Relative(r) => r * longest,
-        NormalOffset::Absolute(a) => a,
-    };
-    let spread_points: Vec<[f64; 3]> = constraints.iter().map(|c| c.position).collect();
-    let spread_normals: Vec<[f64; 3]> = constraints.iter().map(|c| unit(c.normal)).collect();
     // Probes beyond where the surface may pass (the tolerance), or they would pin it.
     let probe = distance.max(3.0 * tolerance * longest);
     let mut outside: Vec<Constraint<3>> = clear_offsets(&spread_points, &spread_normals, probe)
@@ -280,6 +337,9 @@ pub fn reconstruct(
         outliers: points.len() - kept.len(),
         normals_estimated: estimated,
         flipped: oriented.flipped,
+        refuted,
+        disagreeing,
+        contradicted: report.contradicted,
         pieces: oriented.components,
         noise,
         tolerance,
@@ -316,6 +376,10 @@ fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
     }
     out
 }
+
+/// Passes of [`crate::consensus::flip_against_fits`] over a noisy scan, at most; they stop
+/// once fewer than one normal in a thousand changes.
+const CONSENSUS_PASSES: usize = 3;
 
 /// Rounds of outside constraints, and the most added in one.
 const OUTSIDE_ROUNDS: usize = 8;
@@ -374,6 +438,65 @@ fn flatness(points: &[[f64; 3]]) -> Option<&'static str> {
     }
 }
 
+/// The noise of a scan in the points' units (see [`median_quadric_residual`]), measured on
+/// neighbourhoods grown until they reach four times the noise they measure (up to 128
+/// neighbours); with the grown neighbourhoods and the normals estimated on them, when they grew.
+/// A neighbourhood not much wider than the noise fits the noise itself and measures too little.
+fn measure_noise(
+    points: &[[f64; 3]],
+    normals: &[[f64; 3]],
+    near: &Neighbours,
+    estimated: bool,
+) -> (f64, Option<Grown>) {
+    let mut noise = median_quadric_residual(points, normals, near);
+    let mut wide: Option<Grown> = None;
+    for _ in 0..6 {
+        let current = wide.as_ref().map_or(near, |(w, _)| w);
+        let k = current.k();
+        let mut reach: Vec<f64> = (0..current.len())
+            .filter_map(|i| current.distances_of(i).last().copied())
+            .collect();
+        if reach.is_empty() {
+            break;
+        }
+        let middle = reach.len() / 2;
+        let reach = *reach.select_nth_unstable_by(middle, f64::total_cmp).1;
+        let grown = k as f64 * (4.0 * noise / reach.max(f64::MIN_POSITIVE)).powi(2);
+        if !(grown > 1.25 * k as f64) || k >= MOST_NEIGHBOURS {
+            break;
+        }
+        let grown_k = (grown.ceil() as usize).min(MOST_NEIGHBOURS);
+        let neighbours = Neighbours::new(points, grown_k);
+        let grown_normals = if estimated {
+            estimate_normals(points, &neighbours)
+        } else {
+            normals.to_vec()
+        };
+        noise = median_quadric_residual(points, &grown_normals, &neighbours);
+        wide = Some((neighbours, grown_normals));
+    }
+    (noise, wide)
+}
+
+/// Grown neighbourhoods and the normals estimated on them.
+type Grown = (Neighbours, Vec<[f64; 3]>);
+
+/// The widest neighbourhood noise is measured and smoothed on.
+const MOST_NEIGHBOURS: usize = 128;
+
+/// Whether the normal of point `i` is within 60° of the mean of its neighbours' normals: a
+/// normal that is not (noise near a crease, an isolated flip) says more about the noise than
+/// about the surface, and its neighbours say the rest.
+fn agrees_with_neighbours(normals: &[[f64; 3]], near: &Neighbours, i: usize) -> bool {
+    let mut mean = [0.0; 3];
+    for &j in near.of(i) {
+        let n = unit(normals[j as usize]);
+        (0..3).for_each(|d| mean[d] += n[d]);
+    }
+    let n = unit(normals[i]);
+    dot(n, mean) > 0.5 * dot(mean, mean).sqrt()
+}
+
 /// Each point moved onto the plane through its neighbourhood's centroid with its normal.
 fn project_onto_local_planes(
     points: &[[f64; 3]],
@@ -404,7 +527,10 @@ fn project_onto_local_planes(
 /// function fitted to the point's neighbourhood over its tangent plane (a plane would count
 /// the surface's curvature as noise; a quadric takes it out).
 fn median_quadric_residual(points: &[[f64; 3]], normals: &[[f64; 3]], near: &Neighbours) -> f64 {
+    // A median needs no more than a few thousand of them.
+    let step = (points.len() / 4000).max(1);
     let mut rms: Vec<f64> = (0..points.len())
+        .step_by(step)
         .filter_map(|i| {
             let (p, n) = (points[i], normals[i]);
             let others = near.of(i);

@@ -30,6 +30,12 @@ pub struct GreedySettings {
     /// Each round adds the worst-met constraints, up to this fraction of the current count:
     /// 0.5.
     pub growth: f64,
+    /// Leave out the normal constraints that the surface contradicts: it passes within the
+    /// tolerance of the point but f at the offset point has the other sign (the normal points
+    /// the wrong way, as a few of a scan's estimated normals do). They become no centres and
+    /// do not hold off convergence; the worst-met constraints would otherwise be exactly
+    /// these, and fitting them folds the surface. `false` by default: every constraint counts.
+    pub skip_contradicted: bool,
 }
 
 impl Default for GreedySettings {
@@ -39,6 +45,7 @@ impl Default for GreedySettings {
             tolerance: 1e-4,
             max_constraints: 5000,
             growth: 0.5,
+            skip_contradicted: false,
         }
     }
 }
@@ -67,8 +74,12 @@ pub struct GreedyReport<const D: usize> {
     /// Those constraints as fitted: a normal constraint carries the offset that the whole set
     /// gave it (explicitly, so that a model of these constraints alone reproduces the fit).
     pub constraints: Vec<Constraint<D>>,
-    /// Whether every constraint is met within the tolerance.
+    /// Whether every constraint is met within the tolerance (but the contradicted ones, when
+    /// [`GreedySettings::skip_contradicted`] leaves them out).
     pub converged: bool,
+    /// Constraints the returned fit contradicts and that were left out (see
+    /// [`GreedySettings::skip_contradicted`]).
+    pub contradicted: usize,
 }
 
 /// Fits a subset of `constraints` chosen greedily so that the surface meets every one of them
@@ -113,7 +124,17 @@ pub fn fit_greedy<const D: usize>(
         let fit = fit(&subset, settings)?;
         let fit_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let misses = misses(&fit.interpolant, &system, constraints.len());
+        let (mut misses, contradicted) =
+            misses(&fit.interpolant, &system, constraints.len(), tolerance);
+        let mut skipped = 0;
+        if greedy.skip_contradicted {
+            for (m, &c) in misses.iter_mut().zip(&contradicted) {
+                if c {
+                    *m = 0.0;
+                    skipped += 1;
+                }
+            }
+        }
         let max = misses.iter().copied().fold(0.0, f64::max);
         let round = GreedyRound {
             constraints: used.len(),
@@ -133,6 +154,7 @@ pub fn fit_greedy<const D: usize>(
                     used,
                     constraints: subset,
                     converged,
+                    contradicted: skipped,
                 },
             ));
         }
@@ -276,7 +298,15 @@ impl<const D: usize> Spread<D> {
 }
 
 /// Each constraint's miss: the largest |f − h| / |∇f| over its rows.
-fn misses<const D: usize>(f: &Interpolant<f64, D>, system: &System<D>, count: usize) -> Vec<f64> {
+/// Each constraint's miss (the largest over its rows), and whether the surface contradicts it:
+/// a normal constraint whose surface passes within `tolerance` of its point (or within its
+/// offset) while its offset point has f of the other sign than asked.
+fn misses<const D: usize>(
+    f: &Interpolant<f64, D>,
+    system: &System<D>,
+    count: usize,
+    tolerance: f64,
+) -> (Vec<f64>, Vec<bool>) {
     let points = system.points();
     let mut values = vec![0.0; points.len()];
     let mut gradients = vec![[0.0; D]; points.len()];
@@ -295,9 +325,31 @@ fn misses<const D: usize>(f: &Interpolant<f64, D>, system: &System<D>, count: us
         })
         .collect();
     let mut out = vec![0.0_f64; count];
-    for (row, source) in system.sources().iter().enumerate() {
-        let m = &mut out[source.constraint];
-        *m = m.max(per_row[row]);
+    let mut surface_miss = vec![0.0_f64; count];
+    let mut surface_at = vec![None; count];
+    let mut offset_at = vec![None; count];
+    let mut wrong_side = vec![false; count];
+    for (row, (source, h)) in system.sources().iter().zip(system.values()).enumerate() {
+        let c = source.constraint;
+        out[c] = out[c].max(per_row[row]);
+        if source.offset_point {
+            wrong_side[c] = values[row] * h < 0.0;
+            offset_at[c] = Some(points[row]);
+        } else {
+            surface_miss[c] = surface_miss[c].max(per_row[row]);
+            surface_at[c] = Some(points[row]);
+        }
     }
-    out
+    // Near enough: within the tolerance, or within the offset (the surface is there, if not
+    // yet close).
+    let contradicted = (0..count)
+        .map(|c| {
+            let reach = match (surface_at[c], offset_at[c]) {
+                (Some(a), Some(b)) => (0..D).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt(),
+                _ => 0.0,
+            };
+            wrong_side[c] && surface_miss[c] <= tolerance.max(reach)
+        })
+        .collect();
+    (out, contradicted)
 }

@@ -167,3 +167,44 @@ fn a_model_of_the_constraints_used_reads_back_as_the_same_function() {
         assert_eq!(back.interpolant.value(&p), model.interpolant.value(&p));
     }
 }
+
+/// One normal in a hundred reversed, as a scan's estimated normals leave a few: a plain greedy
+/// fit takes them all (they are the worst met) and folds the surface around each; told to
+/// skip contradicted constraints, it takes only those its first spread held, and the surface
+/// stays negative just outside and positive just inside every other reversed point.
+#[test]
+fn contradicted_normals_are_skipped_when_asked() {
+    let mut cs = bumpy(3000);
+    let reversed: Vec<usize> = (0..cs.len()).step_by(100).collect();
+    for &i in &reversed {
+        cs[i].normal = cs[i].normal.map(|x| -x);
+    }
+    let run = |skip: bool| {
+        let settings = GreedySettings {
+            tolerance: 2e-3,
+            skip_contradicted: skip,
+            ..Default::default()
+        };
+        fit_greedy(&cs, &FitSettings::default(), &settings, |_| {}).unwrap()
+    };
+    let taken = |used: &[usize]| reversed.iter().filter(|i| used.contains(i)).count();
+    let (_, plain) = run(false);
+    let (fit, skipping) = run(true);
+    assert!(skipping.converged);
+    // The plain fit takes every reversed normal; the skipping one only those of its first
+    // spread (taken before any surface could contradict them), and reports the rest.
+    assert_eq!(taken(&plain.used), reversed.len());
+    assert!(taken(&skipping.used) <= reversed.len() / 4);
+    assert_eq!(
+        taken(&skipping.used) + skipping.contradicted,
+        reversed.len()
+    );
+    for &i in reversed.iter().filter(|i| !skipping.used.contains(i)) {
+        // The true outward normal is the point's direction from the origin.
+        let p = cs[i].position;
+        let outside = p.map(|x| 1.05 * x);
+        let inside = p.map(|x| 0.95 * x);
+        assert!(fit.interpolant.value(&outside) < 0.0, "outside {i}");
+        assert!(fit.interpolant.value(&inside) > 0.0, "inside {i}");
+    }
+}

@@ -1,0 +1,96 @@
+//! Normals checked against a fit: a coarse implicit surface, fitted to an even spread of the
+//! oriented points, says which way out is at every other point, and normals that point the
+//! other way are flipped.
+//!
+//! Propagated orientation goes wrong in patches where a scan is noisy or thin: a wrong sign
+//! reached through one bad edge spreads to everything behind it. A fit to many points decides
+//! by their consensus instead; a point does not vote on itself (its own constraint would make
+//! the fit agree with it), so the points are checked by a fit to a spread they are not part
+//! of. Only where the coarse surface passes close to a point and its slope clearly disagrees
+//! does the sign change: where the coarse fit misses a thin part, it has no say.
+
+use rbf_core::{Constraint, FitSettings};
+
+use crate::ConvertError;
+
+/// Points in each of the two coarse fits.
+const COARSE: usize = 1500;
+
+/// A normal is flipped where the coarse fit's outward direction makes more than this cosine
+/// with its reverse (an angle above 120°).
+const DISAGREE: f64 = 0.5;
+
+/// Flips the normals of `points` that a coarse fit to the others says point inward; returns how
+/// many. `near` is the distance within which the coarse surface must pass for its slope to
+/// count, in the points' units.
+pub(crate) fn flip_against_fits(
+    points: &[[f64; 3]],
+    normals: &mut [[f64; 3]],
+    settings: &FitSettings,
+    near: f64,
+) -> Result<usize, ConvertError> {
+    if points.len() < 4 * COARSE {
+        return Ok(0);
+    }
+    // Two disjoint spreads: each judges the other's points, and both judge the rest.
+    let first = crate::poisson_subset(points, COARSE);
+    let mut in_first = vec![false; points.len()];
+    first.iter().for_each(|&i| in_first[i] = true);
+    let rest: Vec<usize> = (0..points.len()).filter(|&i| !in_first[i]).collect();
+    let rest_points: Vec<[f64; 3]> = rest.iter().map(|&i| points[i]).collect();
+    let second: Vec<usize> = crate::poisson_subset(&rest_points, COARSE)
+        .into_iter()
+        .map(|k| rest[k])
+        .collect();
+    // The first spread is judged by the second fit, every other point by the first.
+    let judge: Vec<usize> = in_first.iter().map(|&f| usize::from(f)).collect();
+    let verdicts = [
+        outward(points, normals, &first, settings)?,
+        outward(points, normals, &second, settings)?,
+    ];
+    let mut flipped = 0;
+    for (i, n) in normals.iter_mut().enumerate() {
+        let (value, gradient) = verdicts[judge[i]][i];
+        let slope = norm(gradient);
+        if !(slope > 0.0) || !(value.abs() / slope <= near) {
+            continue;
+        }
+        // f is positive inside: out is along −∇f.
+        let cosine = -dot(gradient, *n) / (slope * norm(*n));
+        if cosine < -DISAGREE {
+            *n = [-n[0], -n[1], -n[2]];
+            flipped += 1;
+        }
+    }
+    Ok(flipped)
+}
+
+/// Values and gradients at every point of a fit to the points `chosen`.
+fn outward(
+    points: &[[f64; 3]],
+    normals: &[[f64; 3]],
+    chosen: &[usize],
+    settings: &FitSettings,
+) -> Result<Vec<(f64, [f64; 3])>, ConvertError> {
+    let constraints: Vec<Constraint<3>> = chosen
+        .iter()
+        .map(|&i| Constraint::normal(points[i], normals[i]))
+        .collect();
+    let fit = rbf_solve::fit(&constraints, settings)?;
+    let mut values = vec![0.0; points.len()];
+    let mut gradients = vec![[0.0; 3]; points.len()];
+    // Lengths match by construction.
+    let _ = fit
+        .interpolant
+        .view()
+        .par_values_and_gradients(points, &mut values, &mut gradients);
+    Ok(values.into_iter().zip(gradients).collect())
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
