@@ -29,27 +29,23 @@
 
 mod blend;
 mod compare;
-mod consensus;
 mod error;
-mod goal;
 mod iterative;
-mod nearest;
 mod normals;
 mod poisson;
-mod polish;
-mod reconstruct;
-mod settings;
-mod support;
-mod topology;
+mod scans;
 
 pub use blend::{BlendReport, blend};
 pub use compare::{CompareSettings, DistanceStats, SurfaceDistance, surface_distance};
 pub use error::ConvertError;
-pub use iterative::{IterationReport, IterativeReport, convert_iterative, convert_iterative_2d};
+pub use iterative::{
+    IterationReport, IterativeReport, IterativeSettings, TopologyReport, convert_iterative,
+    convert_iterative_2d,
+};
 pub use normals::{NormalReport, NormalSettings, convert_normals};
 #[doc(hidden)]
 pub use poisson::poisson_subset;
-pub use reconstruct::{ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct};
-pub use settings::IterativeSettings;
-pub use support::{scan_mesh, supported_pieces, trimmed};
-pub use topology::TopologyReport;
+pub use scans::{
+    ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct, scan_mesh,
+    supported_pieces, trimmed,
+};

@@ -24,34 +24,25 @@
 //! assert!((m.volume() - 1.0 / 6.0).abs() < 1e-15);
 //! ```
 
-mod check;
-mod closest;
-mod components;
-mod distance;
 mod error;
-mod hash;
-mod io;
-mod mesh;
+mod files;
+mod meshes;
 mod polygonize;
-mod sample;
-mod shapes;
-pub(crate) mod volume;
-mod voxelize;
-mod winding;
+mod queries;
+mod volumes;
 
-pub use check::MeshReport;
-pub use distance::{signed_distance, squared_distance_transform};
 pub use error::{Location, MeshError};
-pub use io::{
+pub use files::{
     Matrix, PointCloud, declared_cloud_size, mesh_bytes, npy_f64_bytes, read_mesh, read_mesh_bytes,
     read_npy_matrix, read_point_cloud, read_point_cloud_bytes, write_mesh,
 };
-pub use mesh::TriMesh;
+pub use meshes::{MeshReport, TriMesh};
 pub use polygonize::{
     BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, polygonize_continuation,
     polygonize_grid, surface_seeds,
 };
-pub use sample::sample_surface;
-pub use volume::{Volume, classify_blocks, has_other_neighbour};
-pub use voxelize::{MAX_SUPERSAMPLING, VoxelMethod, VoxelSettings, check_volume_size, voxelize};
-pub use winding::{WindingTree, winding_numbers, winding_numbers_exact};
+pub use queries::{WindingTree, sample_surface, winding_numbers, winding_numbers_exact};
+pub use volumes::{
+    MAX_SUPERSAMPLING, Volume, VoxelMethod, VoxelSettings, check_volume_size, classify_blocks,
+    has_other_neighbour, signed_distance, squared_distance_transform, voxelize,
+};

@@ -4,7 +4,7 @@
 use rbf_core::ScalarField;
 
 use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
-use crate::hash::{FastMap, FastSet};
+use crate::meshes::hash::{FastMap, FastSet};
 
 /// The six face neighbours of a cell, and the corners (bits) on the shared face.
 const FACES: [([i64; 3], [u8; 4]); 6] = [

@@ -150,6 +150,14 @@ pub fn polygonize_grid(
     settings: &PolygonizeSettings,
 ) -> Result<(TriMesh, PolygonizeStats), MeshError> {
     let lattice = settings.lattice(f)?;
+    let total = lattice.cells.iter().map(|&c| c as f64).product::<f64>();
+    if total > MAX_GRID_CUBES {
+        return Err(MeshError::Invalid(format!(
+            "{:?} cubes: the grid method samples the whole box, at most {MAX_GRID_CUBES:.0e} cubes; \
+             use a larger cell size, smaller bounds, or continuation",
+            lattice.cells
+        )));
+    }
     let (edges, tris, samples, skipped) = grid::cells(f, &lattice, settings.skip);
     let stats = PolygonizeStats {
         origin: lattice.origin,
@@ -191,6 +199,10 @@ pub fn polygonize_continuation(
         stats,
     ))
 }
+
+/// The most cubes [`polygonize_grid`] lays over its box (1625³): its block corners alone then
+/// take half a gigabyte.
+const MAX_GRID_CUBES: f64 = 4.3e9;
 
 /// Seeds for continuation from a model: its boundary constraints and the boundary points of its
 /// normal constraints, which lie on the surface by construction.

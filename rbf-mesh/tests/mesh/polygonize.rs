@@ -337,3 +337,18 @@ fn at_most_1_3_times_the_triangles_of_marching_cubes() {
         }
     }
 }
+
+/// A lattice too large to sample whole (2000³ cubes over the unit sphere's box) is refused
+/// before anything is allocated, with the cube counts and what to do.
+#[test]
+fn a_grid_too_large_is_refused_not_allocated() {
+    let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+    let settings = PolygonizeSettings {
+        bounds: Some(([-1.5; 3], [1.5; 3])),
+        resolution: Resolution::Cells(2000),
+        ..Default::default()
+    };
+    let err = polygonize_grid(&f, &settings).unwrap_err().to_string();
+    assert!(err.contains("[2000, 2000, 2000] cubes"), "{err}");
+    assert!(err.contains("larger cell size"), "{err}");
+}

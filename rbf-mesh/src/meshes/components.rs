@@ -1,6 +1,6 @@
 //! A mesh's connected pieces, and a mesh of some of them.
 
-use crate::check::UnionFind;
+use super::check::UnionFind;
 use crate::{MeshError, TriMesh};
 
 impl TriMesh {

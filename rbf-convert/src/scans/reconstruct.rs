@@ -11,7 +11,7 @@
 //! whose normals are wrong: a few hundred of 2·10⁴ (measured on a simulated bunny scan at 0.2 %
 //! noise: 114 of the 120 wrong-signed normals became centres, and the surface came out with
 //! genus 21). So a noisy scan is smoothed on neighbourhoods as wide as its noise asks, its
-//! normals are voted on by fits to the other points ([`crate::consensus`]), normals at odds
+//! normals are voted on by fits to the other points ([`super::consensus`]), normals at odds
 //! with their neighbours are left out, and the greedy fit skips points its surface passes but
 //! faces away from (`GreedySettings::skip_contradicted`). The same scan then comes out with
 //! genus 0, one piece.
@@ -244,7 +244,7 @@ pub fn reconstruct(
     let mut refuted = 0;
     if noise > SMOOTH_ABOVE {
         for _ in 0..CONSENSUS_PASSES {
-            let now = crate::consensus::flip_against_fits(
+            let now = super::consensus::flip_against_fits(
                 &spread_points,
                 &mut spread_normals,
                 &fit_settings,
@@ -377,7 +377,7 @@ fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
     out
 }
 
-/// Passes of [`crate::consensus::flip_against_fits`] over a noisy scan, at most; they stop
+/// Passes of [`super::consensus::flip_against_fits`] over a noisy scan, at most; they stop
 /// once fewer than one normal in a thousand changes.
 const CONSENSUS_PASSES: usize = 3;
 

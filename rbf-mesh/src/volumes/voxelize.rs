@@ -298,10 +298,9 @@ fn voxelize_winding(mesh: &TriMesh, settings: &VoxelSettings) -> Result<Volume<f
         .map(|p| {
             let (i, j, k) = coords(p);
             let class = inside[p];
-            let boundary =
-                crate::volume::has_other_neighbour(volume_ref.shape, (i, j, k), |a, b, c| {
-                    inside[(a * ny + b) * nz + c]
-                });
+            let boundary = crate::has_other_neighbour(volume_ref.shape, (i, j, k), |a, b, c| {
+                inside[(a * ny + b) * nz + c]
+            });
             if !boundary {
                 return if class { 1.0 } else { 0.0 };
             }

@@ -18,7 +18,9 @@ pub struct IterativeSettings {
     pub initial_constraints: usize,
     /// Stop when the maximum error is at most this many voxels (§5.4): 1.
     pub target_error: f64,
-    /// Stop after this many iterations without improvement (§5.4): 4.
+    /// Stop after this many iterations without progress (§5.4): 4. Progress is a better model
+    /// or an error below every one before (the maximum, or the RMS by a hundredth): the loop
+    /// does not stop while its errors still fall.
     pub patience: usize,
     /// Stop after this many iterations (§5.4): 30.
     pub max_iterations: usize,

@@ -1,6 +1,6 @@
 //! What a user needs to know about a mesh before trusting it.
 
-use crate::hash::FastMap;
+use super::hash::FastMap;
 
 use crate::TriMesh;
 use rbf_core::vec3::norm;

@@ -172,10 +172,9 @@ pub fn signed_distance(density: &Volume<f32>) -> Volume<f32> {
             for k in 0..nz {
                 let at = density.index(i, j, k);
                 let d = density.data[at];
-                let edge =
-                    crate::volume::has_other_neighbour(density.shape, (i, j, k), |a, b, c| {
-                        inside(density.get(a, b, c))
-                    });
+                let edge = crate::has_other_neighbour(density.shape, (i, j, k), |a, b, c| {
+                    inside(density.get(a, b, c))
+                });
                 if (d > 0.0 && d < 1.0) || edge {
                     cost[at] = 0.0;
                     offset[at] = (d - 0.5).clamp(-0.5, 0.5);

@@ -133,7 +133,7 @@ impl Volume<f32> {
     /// assert_eq!((bytes.len() - 24 * 4) % 64, 0);
     /// ```
     pub fn to_npy(&self) -> Vec<u8> {
-        let mut out = crate::io::npy_preamble("<f4", &self.shape);
+        let mut out = crate::files::npy_preamble("<f4", &self.shape);
         out.reserve(4 * self.data.len());
         for v in &self.data {
             out.extend_from_slice(&v.to_le_bytes());

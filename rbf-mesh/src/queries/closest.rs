@@ -1,7 +1,7 @@
 //! The nearest point of a mesh to a query point, through the bounding hierarchy of
 //! [`WindingTree`].
 
-use crate::winding::WindingTree;
+use super::winding::WindingTree;
 use rbf_core::vec3::{dot, norm, sub};
 
 /// The point of triangle (a, b, c) nearest to p, by the Voronoi regions of its corners, edges

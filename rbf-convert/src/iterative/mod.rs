@@ -1,19 +1,34 @@
 //! The iterative conversion of Yngve & Turk (2002), §3–§5: voxelize the mesh, then fit,
 //! measure the two-way error between the goal's and the current surface's boundary voxels, and
 //! add constraints where it is largest, until the surface is within a voxel of the goal.
+//!
+//! The loop's rooms: the goal volume, its signed distance and the choice of new constraints
+//! (`goal.rs`, with the nearest-voxel search of `nearest.rs`); probes that keep a closed mesh's
+//! topology (`topology.rs`); the polish against the mesh after the loop (`polish.rs`); the
+//! paper's parameters (`settings.rs`); and here, the loop itself: its ranking of models, its
+//! stopping rule and its budgets.
 
 use std::time::Instant;
 
 use rbf_core::{Constraint, ConstraintKind, FitSettings, Interpolant, Model};
 use rbf_mesh::{TriMesh, Volume, VoxelSettings, WindingTree, voxelize};
 
-use crate::goal::{Goal, summary};
-use crate::polish::corrections;
-use crate::topology::{TopologyReport, fixes, measure, thin_probes};
+mod goal;
+mod nearest;
+mod polish;
+mod settings;
+mod topology;
+
+use goal::{Goal, summary};
+use polish::corrections;
+pub use settings::IterativeSettings;
+pub use topology::TopologyReport;
+use topology::{fixes, measure, thin_probes};
+
+use crate::ConvertError;
 
 /// Rounds of pulling the surface back to the mesh after the loop.
 const POLISH_ROUNDS: usize = 2;
-use crate::{ConvertError, IterativeSettings};
 
 /// Constraint counts, boundary errors and timings of one fit-and-refine iteration.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -243,9 +258,11 @@ fn refine_to_goal<const D: usize>(
         best: 0,
         topology: None,
     };
-    // Models that leave no probe violated first, then by maximum and RMS error.
-    let mut best: Option<(bool, f64, f64, Model<D>)> = None;
-    let mut since_best = 0;
+    let mut best: Option<(Rank, Model<D>)> = None;
+    // Iterations since the last progress: a better model, or either error below every one
+    // before it (the RMS by a hundredth).
+    let mut since_progress = 0;
+    let (mut lowest_max, mut lowest_rms) = (f64::INFINITY, f64::INFINITY);
     for iteration in 1..=settings.max_iterations {
         let t = Instant::now();
         let fit = rbf_solve::fit(&constraints, &fit_settings)?;
@@ -272,32 +289,35 @@ fn refine_to_goal<const D: usize>(
         );
         let t = Instant::now();
         let violated = violations > 0;
-        let better = best
-            .as_ref()
-            .is_none_or(|(v, m, r, _)| (violated, max_error, rms_error) < (*v, *m, *r));
+        let rank = Rank::new(violations, max_error, rms_error, settings.target_error);
+        let better = best.as_ref().is_none_or(|(r, _)| rank < *r);
         if better {
             report.best = iteration;
-            since_best = 0;
-        } else {
-            since_best += 1;
         }
+        if better || max_error < lowest_max || rms_error < 0.99 * lowest_rms {
+            since_progress = 0;
+        } else {
+            since_progress += 1;
+        }
+        lowest_max = lowest_max.min(max_error);
+        lowest_rms = lowest_rms.min(rms_error);
         let done = (max_error <= settings.target_error && !violated)
-            || since_best >= settings.patience
+            || since_progress >= settings.patience
             || iteration == settings.max_iterations
             || constraints.len() >= settings.max_constraints;
-        let room = settings.max_constraints.saturating_sub(constraints.len());
-        let violated_probes = if done { 0 } else { fixes.len().min(room) };
-        let added = if done {
-            0
+        let (violated_probes, added) = if done {
+            (0, 0)
         } else {
-            constraints.extend(fixes.into_iter().take(room));
+            let room = settings.max_constraints.saturating_sub(constraints.len());
+            let probes = fixes.len().min(room);
+            constraints.extend(fixes.into_iter().take(probes));
             // Once the error is within its target, only the probes are added.
             let refined = if max_error <= settings.target_error {
                 0
             } else {
-                goal.refine(&errors, &mut constraints, settings)
+                goal.refine(&errors, &mut constraints, settings, since_progress > 0)
             };
-            violated_probes + refined
+            (probes, probes + refined)
         };
         let it = IterationReport {
             iteration,
@@ -314,13 +334,39 @@ fn refine_to_goal<const D: usize>(
         };
         progress(&it, &model);
         if better {
-            best = Some((violated, max_error, rms_error, model));
+            best = Some((rank, model));
         }
         report.iterations.push(it);
         if done || added == 0 {
             break;
         }
     }
-    let (_, _, _, model) = best.ok_or(ConvertError::NoIteration)?;
+    let (_, model) = best.ok_or(ConvertError::NoIteration)?;
     Ok((model, report))
+}
+
+/// How the loop ranks its models, best first: those close to the mesh (a maximum error within
+/// twice the target) that leave no probe violated; then every other by its maximum error, the
+/// probes it violates, and its RMS error. A model that keeps the topology but misses the mesh
+/// by several voxels is not preferred to one close to it with a probe or two violated.
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+struct Rank {
+    not_close_or_violated: bool,
+    max_error: f64,
+    violations: usize,
+    rms_error: f64,
+}
+
+/// Maximum errors, as multiples of the target, that count as close.
+const CLOSE: f64 = 2.0;
+
+impl Rank {
+    fn new(violations: usize, max_error: f64, rms_error: f64, target: f64) -> Self {
+        Self {
+            not_close_or_violated: violations > 0 || !(max_error <= CLOSE * target),
+            max_error,
+            violations,
+            rms_error,
+        }
+    }
 }

@@ -12,7 +12,7 @@ use rbf_mesh::{
     squared_distance_transform,
 };
 
-use crate::nearest::VoxelBins;
+use super::nearest::VoxelBins;
 use crate::{ConvertError, IterativeSettings, poisson_subset};
 
 /// The first `D` coordinates of a goal point: the model's point (z dropped in 2D).
@@ -317,19 +317,21 @@ impl Goal {
     }
 
     /// §5.3: new constraints at the largest errors, pruned. Returns how many were added.
+    ///
+    /// The paper takes only errors of at least half the largest. Where those lie where no
+    /// constraint may go (within the spacing of others, as on a blade a few voxels thick), that
+    /// adds almost nothing and the loop starves while the rest of the surface is still off: so
+    /// once the loop has `stalled` (its last iteration made no progress), if that adds fewer
+    /// than a twentieth of the constraints there are, every error above the target is a
+    /// candidate, largest first.
     pub(crate) fn refine<const D: usize>(
         &self,
         errors: &[(usize, f64, bool)],
         constraints: &mut Vec<Constraint<D>>,
         settings: &IterativeSettings,
+        stalled: bool,
     ) -> usize {
         let (max, _) = summary(errors);
-        let mut candidates: Vec<&(usize, f64, bool)> = errors
-            .iter()
-            .filter(|e| e.1 >= settings.error_fraction * max && e.1 > 0.0)
-            .collect();
-        // Largest error first; in a tie, the goal's boundary first.
-        candidates.sort_by(|a, b| b.1.total_cmp(&a.1).then(b.2.cmp(&a.2)));
         let mut grid = Spacing::new(settings.min_spacing);
         for c in constraints.iter() {
             grid.add(self.to_voxels(lift(c.position)));
@@ -339,35 +341,49 @@ impl Goal {
         let limit = settings
             .max_constraints
             .min(constraints.len().saturating_add(growth as usize));
-        for &&(v, error, from_goal) in &candidates {
-            if constraints.len() >= limit {
+        let starving = if stalled {
+            (constraints.len() / 20).max(1)
+        } else {
+            0
+        };
+        for cut in [settings.error_fraction * max, settings.target_error] {
+            if added.len() >= starving && cut < settings.error_fraction * max {
                 break;
             }
-            let at = self.coords(v).map(|x| x as f64);
-            if added.iter().any(|(p, e)| dist(*p, at) < 2.0 * e) {
-                continue;
-            }
-            let constraint = if from_goal {
-                Constraint::boundary(flat(self.surface_point(v)))
-            } else {
-                let p = self.point(at);
-                let value = self.signed_distance(v, p);
-                if value == 0.0 {
+            let mut candidates: Vec<&(usize, f64, bool)> =
+                errors.iter().filter(|e| e.1 >= cut && e.1 > 0.0).collect();
+            // Largest error first; in a tie, the goal's boundary first.
+            candidates.sort_by(|a, b| b.1.total_cmp(&a.1).then(b.2.cmp(&a.2)));
+            for &&(v, error, from_goal) in &candidates {
+                if constraints.len() >= limit {
+                    break;
+                }
+                let at = self.coords(v).map(|x| x as f64);
+                if added.iter().any(|(p, e)| dist(*p, at) < 2.0 * e) {
                     continue;
                 }
-                if value > 0.0 {
-                    Constraint::interior(flat(p), value)
+                let constraint = if from_goal {
+                    Constraint::boundary(flat(self.surface_point(v)))
                 } else {
-                    Constraint::exterior(flat(p), value)
+                    let p = self.point(at);
+                    let value = self.signed_distance(v, p);
+                    if value == 0.0 {
+                        continue;
+                    }
+                    if value > 0.0 {
+                        Constraint::interior(flat(p), value)
+                    } else {
+                        Constraint::exterior(flat(p), value)
+                    }
+                };
+                let pv = self.to_voxels(lift(constraint.position));
+                if !grid.free(pv, settings.min_spacing) {
+                    continue;
                 }
-            };
-            let pv = self.to_voxels(lift(constraint.position));
-            if !grid.free(pv, settings.min_spacing) {
-                continue;
+                grid.add(pv);
+                added.push((at, error));
+                constraints.push(constraint);
             }
-            grid.add(pv);
-            added.push((at, error));
-            constraints.push(constraint);
         }
         added.len()
     }
