@@ -132,8 +132,8 @@ def run_child(script, args):
 
 
 def pieces_and_genus(mesh):
-    """Connected pieces (by shared vertices) and the genus of the largest, from Euler's formula:
-    cheap on meshes of thousands of crumbs, where splitting into meshes is not."""
+    """Connected pieces (by shared vertices) and the genus of the largest, from Euler's formula
+    (None if it is open): cheap on meshes of thousands of crumbs, where splitting is not."""
     faces = mesh.faces
     n = len(mesh.vertices)
     edges = np.vstack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
@@ -146,7 +146,11 @@ def pieces_and_genus(mesh):
     v = len(np.unique(f))
     e = len(np.unique(np.sort(np.vstack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1),
                       axis=0))
-    return int(np.count_nonzero(counts)), int(round((2 - (v - e + len(f))) / 2))
+    # A piece with boundary edges (an edge in one face) has no genus to speak of.
+    edge_faces = np.unique(np.sort(np.vstack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1),
+                           axis=0, return_counts=True)[1]
+    genus = int(round((2 - (v - e + len(f))) / 2)) if np.all(edge_faces == 2) else None
+    return int(np.count_nonzero(counts)), genus
 
 
 def surface_metrics(path, truth, truth_samples, diag):
