@@ -161,7 +161,8 @@ pub fn reconstruct(
     if let Some(shape) = flatness(&kept) {
         return Err(ConvertError::Flat { shape });
     }
-    let near = Neighbours::new(&kept, settings.neighbours.max(3));
+    let k = settings.neighbours.max(3);
+    let near = Neighbours::new(&kept, k);
     let (unoriented, estimated) = match normals {
         Some(given) if given.len() == points.len() => {
             (keep.iter().map(|&i| unit(given[i])).collect(), false)
@@ -169,7 +170,6 @@ pub fn reconstruct(
         _ => (estimate_normals(&kept, &near), true),
     };
     let longest = longest_side(&kept);
-    let k = settings.neighbours.max(3);
     let (noise, wide) = measure_noise(&kept, &unoriented, &near, estimated);
     let noise = noise / longest;
     let tolerance = settings
