@@ -76,9 +76,13 @@ pub(crate) fn run(args: &MeshArgs, quiet: bool) -> Result<(), Failure> {
     };
     spinner.finish_and_clear();
     let (mesh, stats) = result.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
-    write_mesh(&args.output, &mesh).map_err(|e| Failure::mesh(&e))?;
-    if !quiet {
-        let r = mesh.check();
+    // The file is written while the mesh is checked for the summary.
+    let (written, report) = rayon::join(
+        || write_mesh(&args.output, &mesh),
+        || (!quiet).then(|| mesh.check()),
+    );
+    written.map_err(|e| Failure::mesh(&e))?;
+    if let Some(r) = report {
         eprintln!(
             "{} vertices, {} triangles ({} × {} × {} cubes, {} samples) in {:.2} s; {}; wrote {}",
             r.vertices,

@@ -58,6 +58,11 @@ impl UnionFind {
     pub(crate) fn new(n: usize) -> Self {
         Self((0..n as u32).collect())
     }
+    /// Makes this `n` singletons again, keeping the allocation.
+    pub(crate) fn reset(&mut self, n: usize) {
+        self.0.clear();
+        self.0.extend(0..n as u32);
+    }
     pub(crate) fn find(&mut self, mut x: u32) -> u32 {
         while self.0[x as usize] != x {
             let parent = self.0[self.0[x as usize] as usize];
@@ -124,34 +129,49 @@ impl TriMesh {
             }
         }
 
-        // Fans around each vertex: triangles at v joined when they share an edge at v.
-        let mut at_vertex: Vec<Vec<u32>> = vec![Vec::new(); n];
+        // Fans around each vertex: triangles at v joined when they share an edge at v. The
+        // triangles at each vertex are laid out one vertex after another (`first[v]..first[v + 1]`).
+        let mut first = vec![0u32; n + 1];
+        for tri in tris {
+            for &v in tri {
+                first[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            first[v + 1] += first[v];
+        }
+        let mut fill = first.clone();
+        let mut at_vertex = vec![0u32; 3 * tris.len()];
         for (t, tri) in tris.iter().enumerate() {
             for &v in tri {
-                at_vertex[v as usize].push(t as u32);
+                at_vertex[fill[v as usize] as usize] = t as u32;
+                fill[v as usize] += 1;
             }
         }
         let mut non_manifold_vertices = 0;
-        for (v, faces) in at_vertex.iter().enumerate() {
+        let mut by_other: Vec<(u32, u32)> = Vec::new();
+        let mut fan = UnionFind::new(0);
+        for v in 0..n {
+            let faces = &at_vertex[first[v] as usize..first[v + 1] as usize];
             if faces.len() < 2 {
                 continue;
             }
-            let mut uf = UnionFind::new(faces.len());
-            let mut by_other: FastMap<u32, usize> = FastMap::default();
+            fan.reset(faces.len());
+            by_other.clear();
             for (i, &f) in faces.iter().enumerate() {
                 for &w in &tris[f as usize] {
                     if w as usize == v {
                         continue;
                     }
-                    match by_other.get(&w) {
-                        Some(&j) => uf.union(i as u32, j as u32),
-                        None => {
-                            by_other.insert(w, i);
-                        }
+                    match by_other.iter().find(|&&(o, _)| o == w) {
+                        Some(&(_, j)) => fan.union(i as u32, j),
+                        None => by_other.push((w, i as u32)),
                     }
                 }
             }
-            let roots = (0..faces.len() as u32).filter(|&i| uf.find(i) == i).count();
+            let roots = (0..faces.len() as u32)
+                .filter(|&i| fan.find(i) == i)
+                .count();
             if roots > 1 {
                 non_manifold_vertices += 1;
             }
@@ -163,25 +183,27 @@ impl TriMesh {
             uf.union(b, c);
         }
         let vertices = used.iter().filter(|&&u| u).count();
-        let mut per_component: FastMap<u32, (i64, i64, i64)> = FastMap::default();
+        // Vertices, edges and triangles of each component, at its root.
+        let mut per_root: Vec<(i64, i64, i64)> = vec![(0, 0, 0); n];
         for (v, &u) in used.iter().enumerate() {
             if u {
-                per_component.entry(uf.find(v as u32)).or_default().0 += 1;
+                per_root[uf.find(v as u32) as usize].0 += 1;
             }
         }
-        for &(a, b) in edges.keys() {
-            per_component.entry(uf.find(a)).or_default().1 += 1;
-            let _ = b;
+        for &(a, _) in edges.keys() {
+            per_root[uf.find(a) as usize].1 += 1;
         }
         for &[a, _, _] in tris {
-            per_component.entry(uf.find(a)).or_default().2 += 1;
+            per_root[uf.find(a) as usize].2 += 1;
         }
+        let per_component: Vec<(i64, i64, i64)> =
+            per_root.into_iter().filter(|c| c.0 > 0).collect();
         let euler = vertices as i64 - edges.len() as i64 + tris.len() as i64;
         let closed =
             boundary == 0 && non_manifold == 0 && non_manifold_vertices == 0 && inconsistent == 0;
         let genus = closed.then(|| {
             per_component
-                .values()
+                .iter()
                 .map(|(v, e, f)| (2 - (v - e + f)) / 2)
                 .sum()
         });

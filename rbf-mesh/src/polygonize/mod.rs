@@ -48,7 +48,7 @@ pub struct PolygonizeSettings {
     pub margin: f64,
     /// How the grid method decides that a block of 4³ cubes holds no surface.
     pub skip: BlockSkip,
-    /// Rounds of root finding along each edge (Illinois regula falsi). 8.
+    /// Rounds of root finding along each edge (a secant step, then safeguarded Newton). 8.
     pub root_iterations: usize,
 }
 

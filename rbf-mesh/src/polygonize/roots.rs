@@ -12,6 +12,10 @@ use crate::{MeshError, TriMesh};
 /// where f is exactly zero at a lattice point (the surface then touches that point).
 const END_MARGIN: f64 = 1e-6;
 
+/// A Newton step shorter than this fraction of an edge ends the search (its error is of the
+/// order of its square).
+const NEWTON_DONE: f64 = 1e-3;
+
 /// Where the root search along one edge stands.
 #[derive(Clone, Copy)]
 struct Search {
@@ -20,21 +24,25 @@ struct Search {
     f_lo: f64,
     hi: f64,
     f_hi: f64,
-    /// Which end moved last (−1 lo, 1 hi), for the Illinois rule.
-    side: i8,
     /// Edge parameter in [0, 1] of the next point to evaluate (0 at one end, 1 at the other).
     t: f64,
     /// The gradient at the last point evaluated.
     gradient: [f64; 3],
+    /// Lengths of the last step and of the one before (edge parameter).
+    step: f64,
+    step_before: f64,
     done: bool,
 }
 
-/// Builds the mesh: one vertex per crossed edge, placed where f = 0. Each round evaluates f
-/// and ∇f at every unfinished edge's current point in one batch and takes a Newton step along
-/// the edge, or an Illinois secant step within the bracket when Newton would leave it. An edge
-/// is done when |f| is below 1e-8 of the change of f along it, or its Newton step is below
-/// 1e-4 of its length (either way the vertex is within about 1e-8 of an edge length of the
-/// surface), after at most `iterations` rounds.
+/// Builds the mesh: one vertex per crossed edge, placed where f = 0. The first round evaluates
+/// f at every edge's secant point and takes a secant step within the bracket; each
+/// later round evaluates f and ∇f at every unfinished edge's current point in one batch and
+/// takes a Newton step along the edge, or halves the bracket when Newton would leave it or
+/// does not converge fast enough.
+/// An edge is done when |f| is below 1e-8 of the change of f along it, or its Newton step is
+/// below 1e-3 of its length (Newton's error is then of the order of the step's square: the
+/// vertex is within about 1e-6 of an edge length of the surface), after at most `iterations`
+/// rounds.
 pub(crate) fn assemble(
     f: &dyn ScalarField<3>,
     lattice: &Lattice,
@@ -79,9 +87,10 @@ pub(crate) fn assemble(
             f_lo: a,
             hi: 1.0,
             f_hi: b,
-            side: 0,
             t: secant(0.0, a, 1.0, b).clamp(END_MARGIN, 1.0 - END_MARGIN),
             gradient: [0.0; 3],
+            step: 1.0,
+            step_before: 1.0,
             done: false,
         })
         .collect();
@@ -116,55 +125,62 @@ pub(crate) fn assemble(
             .collect();
         let mut values = vec![0.0; points.len()];
         let mut gradients = vec![[0.0; 3]; points.len()];
+        // The first round takes values only (half the cost), for a secant step; every vertex
+        // then gets a gradient, for its normal, in the rounds after.
+        let first = round == 0 && iterations > 1;
         // Equal lengths by construction.
-        let _ = f.field_values_and_gradients(&points, &mut values, &mut gradients);
+        let _ = if first {
+            f.field_values(&points, &mut values)
+        } else {
+            f.field_values_and_gradients(&points, &mut values, &mut gradients)
+        };
         let last = round + 1 == iterations.max(1);
         let mut still = Vec::with_capacity(pending.len());
         for ((&i, &v), &g) in pending.iter().zip(&values).zip(&gradients) {
             let s = &mut searches[i];
             s.gradient = g;
-            if v.abs() <= tolerance[i] || last {
+            if !first && (v.abs() <= tolerance[i] || last) {
                 s.done = true;
                 continue;
             }
             // Shrink the bracket to the side where the sign changes.
             let t = s.t;
-            // Illinois: when the same end moves twice, halve the value kept at the other, so
-            // that secant steps do not stall against a fixed end.
             if (v > 0.0) == (s.f_lo > 0.0) {
                 s.lo = t;
                 s.f_lo = v;
-                if s.side == -1 {
-                    s.f_hi *= 0.5;
-                }
-                s.side = -1;
             } else {
                 s.hi = t;
                 s.f_hi = v;
-                if s.side == 1 {
-                    s.f_lo *= 0.5;
-                }
-                s.side = 1;
             }
             // Newton along the edge: d f / d t = ∇f · (b − a).
             let (a, b) = ends[i];
             let slope: f64 = (0..3).map(|d| g[d] * (b[d] - a[d])).sum();
-            let newton = t - v / slope;
+            let newton = if first { f64::NAN } else { t - v / slope };
             let (lo, hi) = (s.lo.min(s.hi), s.lo.max(s.hi));
-            let inside = newton.is_finite() && newton > lo && newton < hi;
-            s.t = if inside {
+            // Newton is taken while it stays in the bracket and its steps at least halve every
+            // other round (as they do near a simple root); else the bracket is halved, as where
+            // the surface grazes the edge and f is nearly flat along it.
+            let inside = newton.is_finite()
+                && newton > lo
+                && newton < hi
+                && (newton - t).abs() <= 0.5 * s.step_before;
+            let next = if inside {
                 newton
-            } else {
+            } else if first {
                 secant(s.lo, s.f_lo, s.hi, s.f_hi)
-            }
-            .clamp(END_MARGIN, 1.0 - END_MARGIN);
+            } else {
+                0.5 * (lo + hi)
+            };
+            s.step_before = s.step;
+            s.step = (next - t).abs();
+            s.t = next.clamp(END_MARGIN, 1.0 - END_MARGIN);
             // A Newton step this small leaves an error of the order of its square: accept it
-            // without another evaluation (the gradient kept is from 1e-4 of an edge away).
-            if inside && (newton - t).abs() < 1e-4 {
+            // without another evaluation (the gradient kept is from 1e-3 of an edge away).
+            if inside && (newton - t).abs() < NEWTON_DONE {
                 s.done = true;
                 continue;
             }
-            if (hi - lo) < 1e-12 {
+            if (hi - lo) < 1e-12 && !first {
                 s.done = true;
                 continue;
             }

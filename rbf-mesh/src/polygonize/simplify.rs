@@ -28,8 +28,105 @@ const LONGEST: f64 = 1.0;
 /// Collapses edges of the mesh until at most `target` vertices remain (or no allowed collapse
 /// of an edge shorter than [`LONGEST`] cells does). Returns, per old vertex, the vertex it was
 /// merged into (itself if kept), and the triangles left (on old indices).
+///
+/// A large mesh is first collapsed in parts, in parallel (see [`collapse_in_parts`]), then as
+/// a whole.
 pub(crate) fn collapse(
     positions: &[Vec3],
+    triangles: Vec<[u32; 3]>,
+    cell: f64,
+    target: usize,
+) -> (Vec<u32>, Vec<[u32; 3]>) {
+    let n = positions.len();
+    let (mut merged, triangles) = collapse_in_parts(positions, triangles, cell, target);
+    let (merged_whole, triangles) =
+        collapse_whole(positions, &vec![false; n], triangles, cell, target);
+    for v in 0..n {
+        if merged[v] as usize == v {
+            merged[v] = merged_whole[v];
+        }
+    }
+    // Follow chains of merges to the vertex that survived.
+    for v in 0..n {
+        let mut r = merged[v];
+        while merged[r as usize] != r {
+            r = merged[r as usize];
+        }
+        merged[v] = r;
+    }
+    (merged, triangles)
+}
+
+/// Vertices in each part of [`collapse_in_parts`], at least.
+const PART: usize = 16_384;
+
+/// Collapses a large mesh in up to eight parts at once. Vertices are numbered along the
+/// lattice (x, then y, then z), so consecutive ranges of them are slabs of the box. A part is
+/// a range with the triangles wholly in it; the vertices of triangles that cross from one part
+/// to another are frozen (neither removed nor kept in place of another), so that every check a
+/// part makes sees all the triangles it concerns. The parts are fixed by the vertex count, not
+/// by the threads, so the mesh does not depend on the machine.
+fn collapse_in_parts(
+    positions: &[Vec3],
+    triangles: Vec<[u32; 3]>,
+    cell: f64,
+    target: usize,
+) -> (Vec<u32>, Vec<[u32; 3]>) {
+    let n = positions.len();
+    let parts = (n / PART).min(8);
+    let mut merged: Vec<u32> = (0..n as u32).collect();
+    if parts < 2 {
+        return (merged, triangles);
+    }
+    let part_of = |v: u32| v as usize * parts / n;
+    let first = |p: usize| (p * n).div_ceil(parts);
+    let mut frozen = vec![false; n];
+    let mut inside: Vec<Vec<[u32; 3]>> = vec![Vec::new(); parts];
+    let mut seam = Vec::new();
+    for t in triangles {
+        let p = part_of(t[0]);
+        if t.iter().all(|&v| part_of(v) == p) {
+            inside[p].push(t);
+        } else {
+            for v in t {
+                frozen[v as usize] = true;
+            }
+            seam.push(t);
+        }
+    }
+    let collapsed: Vec<(Vec<u32>, Vec<[u32; 3]>)> = inside
+        .into_par_iter()
+        .enumerate()
+        .map(|(p, tris)| {
+            let (lo, hi) = (first(p), first(p + 1));
+            let local = tris.into_iter().map(|t| t.map(|v| v - lo as u32)).collect();
+            let part_target = target * (hi - lo) / n;
+            let (merged, tris) = collapse_whole(
+                &positions[lo..hi],
+                &frozen[lo..hi],
+                local,
+                cell,
+                part_target,
+            );
+            (
+                merged.into_iter().map(|v| v + lo as u32).collect(),
+                tris.into_iter().map(|t| t.map(|v| v + lo as u32)).collect(),
+            )
+        })
+        .collect();
+    let mut triangles = seam;
+    for (p, (part_merged, part_triangles)) in collapsed.into_iter().enumerate() {
+        merged[first(p)..first(p + 1)].copy_from_slice(&part_merged);
+        triangles.extend(part_triangles);
+    }
+    (merged, triangles)
+}
+
+/// [`collapse`] in one piece, leaving `frozen` vertices alone. Merges are not yet followed
+/// to their ends.
+fn collapse_whole(
+    positions: &[Vec3],
+    frozen: &[bool],
     triangles: Vec<[u32; 3]>,
     cell: f64,
     target: usize,
@@ -49,6 +146,7 @@ pub(crate) fn collapse(
     for _ in 0..2 {
         collapse_edges(
             positions,
+            frozen,
             cell,
             target,
             &mut triangles,
@@ -57,15 +155,7 @@ pub(crate) fn collapse(
             &mut merged,
             &mut vertices,
         );
-        flip_slivers(positions, &mut triangles, &alive, &mut around);
-    }
-    // Follow chains of merges to the vertex that survived.
-    for v in 0..n {
-        let mut r = merged[v];
-        while merged[r as usize] != r {
-            r = merged[r as usize];
-        }
-        merged[v] = r;
+        flip_slivers(positions, frozen, &mut triangles, &alive, &mut around);
     }
     let kept = triangles
         .into_iter()
@@ -79,6 +169,7 @@ pub(crate) fn collapse(
 #[allow(clippy::too_many_arguments)]
 fn collapse_edges(
     positions: &[Vec3],
+    frozen: &[bool],
     cell: f64,
     target: usize,
     triangles: &mut [[u32; 3]],
@@ -106,6 +197,7 @@ fn collapse_edges(
         .filter(|e| e.0 < longest)
         .collect();
     edges.par_sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+    let mut scratch = Scratch::default();
     for (l, a, b) in edges {
         if *vertices <= target && l >= short {
             break;
@@ -113,10 +205,20 @@ fn collapse_edges(
         if merged[a as usize] != a || merged[b as usize] != b {
             continue;
         }
+        if frozen[a as usize] || frozen[b as usize] {
+            continue;
+        }
         for (from, to) in [(a, b), (b, a)] {
-            if let Some(across) =
-                collapsible(positions, cell, &*triangles, &*alive, &*around, from, to)
-            {
+            if let Some(across) = collapsible(
+                positions,
+                cell,
+                &*triangles,
+                &*alive,
+                &*around,
+                from,
+                to,
+                &mut scratch,
+            ) {
                 // Merge `from` into `to`.
                 for &t in &across {
                     alive[t as usize] = false;
@@ -142,20 +244,37 @@ fn collapse_edges(
     }
 }
 
-/// The vertices joined to v by an edge.
-fn neighbours(triangles: &[[u32; 3]], alive: &[bool], around: &[Vec<u32>], v: u32) -> Vec<u32> {
-    let mut out: Vec<u32> = around[v as usize]
-        .iter()
-        .filter(|&&t| alive[t as usize])
-        .flat_map(|&t| triangles[t as usize])
-        .filter(|&w| w != v)
-        .collect();
+/// Buffers reused by every [`collapsible`] check, so that checks allocate nothing.
+#[derive(Default)]
+struct Scratch {
+    /// The neighbours of the vertex that goes, sorted.
+    ring: Vec<u32>,
+    /// The neighbours of the vertex that stays, sorted.
+    theirs: Vec<u32>,
+    /// The live triangles at the vertex that stays, each with its corners sorted.
+    at_to: Vec<[u32; 3]>,
+}
+
+/// The vertices joined to v by an edge, sorted, into `out`.
+fn neighbours(
+    triangles: &[[u32; 3]],
+    alive: &[bool],
+    around: &[Vec<u32>],
+    v: u32,
+    out: &mut Vec<u32>,
+) {
+    out.clear();
+    for &t in &around[v as usize] {
+        if alive[t as usize] {
+            out.extend(triangles[t as usize].into_iter().filter(|&w| w != v));
+        }
+    }
     out.sort_unstable();
     out.dedup();
-    out
 }
 
 /// If merging `from` into `to` is allowed, the two triangles that vanish.
+#[allow(clippy::too_many_arguments)]
 fn collapsible(
     positions: &[Vec3],
     cell: f64,
@@ -164,37 +283,40 @@ fn collapsible(
     around: &[Vec<u32>],
     from: u32,
     to: u32,
+    scratch: &mut Scratch,
 ) -> Option<[u32; 2]> {
     let live = |t: &&u32| alive[**t as usize];
-    let shared: Vec<u32> = around[from as usize]
-        .iter()
-        .filter(live)
-        .copied()
-        .filter(|&t| triangles[t as usize].contains(&to))
-        .collect();
-    if shared.len() != 2 {
+    let (mut shared, mut sharing, mut fan) = ([0u32; 2], 0, 0);
+    for &t in around[from as usize].iter().filter(live) {
+        fan += 1;
+        if triangles[t as usize].contains(&to) {
+            if sharing < 2 {
+                shared[sharing] = t;
+            }
+            sharing += 1;
+        }
+    }
+    if sharing != 2 {
         return None; // the border, or not an edge
     }
     // Every edge at `from` must have two triangles (no border vertex is removed): a closed fan
     // has as many triangles as neighbours, an open one a neighbour more.
-    let ring = neighbours(triangles, alive, around, from);
-    if ring.len() != around[from as usize].iter().filter(live).count() {
+    neighbours(triangles, alive, around, from, &mut scratch.ring);
+    if scratch.ring.len() != fan {
         return None;
     }
     // Link condition: the ends' common neighbours are the two vertices across the edge.
-    let opposite: Vec<u32> = shared
+    let opposite = shared.map(|t| {
+        triangles[t as usize]
+            .into_iter()
+            .find(|&w| w != from && w != to)
+            .unwrap_or(from)
+    });
+    neighbours(triangles, alive, around, to, &mut scratch.theirs);
+    let common = scratch
+        .ring
         .iter()
-        .map(|&t| {
-            triangles[t as usize]
-                .into_iter()
-                .find(|&w| w != from && w != to)
-                .unwrap_or(from)
-        })
-        .collect();
-    let theirs = neighbours(triangles, alive, around, to);
-    let common = ring
-        .iter()
-        .filter(|w| theirs.binary_search(w).is_ok())
+        .filter(|w| scratch.theirs.binary_search(w).is_ok())
         .count();
     if common != 2 || opposite[0] == opposite[1] {
         return None;
@@ -210,6 +332,14 @@ fn collapsible(
             around_normal[d] += n[d];
         }
     }
+    scratch.at_to.clear();
+    scratch
+        .at_to
+        .extend(around[to as usize].iter().filter(live).map(|&u| {
+            let mut other = triangles[u as usize];
+            other.sort_unstable();
+            other
+        }));
     let tiny = 1e-8 * cell * cell;
     let short = norm(sub(p(from), p(to))) < SHORT * cell;
     for &t in around[from as usize].iter().filter(live) {
@@ -222,12 +352,7 @@ fn collapsible(
         // which the link condition alone lets through.
         let mut sorted = new;
         sorted.sort_unstable();
-        let folds = around[to as usize].iter().filter(live).any(|&u| {
-            let mut other = triangles[u as usize];
-            other.sort_unstable();
-            other == sorted
-        });
-        if folds {
+        if scratch.at_to.contains(&sorted) {
             return None;
         }
         let (mut n_old, n_new) = (normal_of(old), normal_of(new));
@@ -247,7 +372,7 @@ fn collapsible(
             }
         }
     }
-    Some([shared[0], shared[1]])
+    Some(shared)
 }
 
 /// Flips the longest edge of each triangle with an angle below [`MIN_ANGLE`] (a cap: one
@@ -255,6 +380,7 @@ fn collapsible(
 /// smallest angle of the pair, turns neither triangle by more than 60° and makes no edge twice.
 fn flip_slivers(
     positions: &[Vec3],
+    frozen: &[bool],
     triangles: &mut [[u32; 3]],
     alive: &[bool],
     around: &mut [Vec<u32>],
@@ -276,6 +402,9 @@ fn flip_slivers(
                 })
                 .unwrap_or(0);
             let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+            if frozen[a as usize] || frozen[b as usize] || frozen[c as usize] {
+                continue;
+            }
             let Some(&t2) = around[b as usize].iter().find(|&&t| {
                 let o = triangles[t as usize];
                 t as usize != t1
@@ -291,7 +420,7 @@ fn flip_slivers(
             let exists = around[c as usize]
                 .iter()
                 .any(|&t| alive[t as usize] && triangles[t as usize].contains(&d));
-            if exists || c == d {
+            if exists || c == d || frozen[d as usize] {
                 continue;
             }
             let (new1, new2) = ([c, a, d], [d, b, c]);

@@ -228,6 +228,16 @@ fn torus_has_genus_one() {
     assert_good("torus/grid", &m.interpolant, &grid, 1, 1);
     let (cont, _) = polygonize_continuation(&f, &surface_seeds(&m), &settings(48)).unwrap();
     assert_good("torus/continuation", &m.interpolant, &cont, 1, 1);
+    // Finer, the lattice's mesh has about 7·10⁴ vertices before simplification (three per
+    // vertex kept), which is then done in four parts, in parallel: the guarantees hold across
+    // the seams between parts.
+    let (fine, _) = polygonize_continuation(&f, &surface_seeds(&m), &settings(128)).unwrap();
+    assert!(
+        fine.positions().len() > 20_000,
+        "{}",
+        fine.positions().len()
+    );
+    assert_good("torus/continuation/128", &m.interpolant, &fine, 1, 1);
 }
 
 #[test]
