@@ -1,6 +1,7 @@
 //! Marching tetrahedra over every cell of a box, coarse to fine: f and ∇f are sampled on a
 //! coarse lattice (every fourth point), and only the blocks of 4³ cubes that the surface may
-//! cross are sampled in full.
+//! cross are sampled in full, each lattice point once (a point on a face between two such
+//! blocks is sampled by one of them).
 
 use rayon::prelude::*;
 use rbf_core::ScalarField;
@@ -10,9 +11,6 @@ use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
 
 /// Cells along each side of a block.
 const BLOCK: i64 = 4;
-
-/// What a block that was not skipped gives: crossed edges, triangles, samples taken.
-type BlockResult = (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize);
 
 /// Crossed edges, triangles, lattice points sampled and blocks skipped.
 pub(crate) fn cells(
@@ -44,15 +42,19 @@ pub(crate) fn cells(
     let coarse = |i: [i64; 3]| (i[0] + coarse_n[0] * (i[1] + coarse_n[1] * i[2])) as usize;
 
     let total = (blocks[0] * blocks[1] * blocks[2]) as usize;
-    let results: Vec<Option<BlockResult>> = (0..total)
+    let block_of = |b: usize| {
+        let b = b as i64;
+        [
+            b % blocks[0],
+            (b / blocks[0]) % blocks[1],
+            b / (blocks[0] * blocks[1]),
+        ]
+    };
+    // The blocks that may hold surface, in order of their number.
+    let sampled: Vec<usize> = (0..total)
         .into_par_iter()
-        .map(|b| {
-            let b = b as i64;
-            let block = [
-                b % blocks[0],
-                (b / blocks[0]) % blocks[1],
-                b / (blocks[0] * blocks[1]),
-            ];
+        .filter(|&b| {
+            let block = block_of(b);
             let lo = coarse_point(block);
             let hi = coarse_point([block[0] + 1, block[1] + 1, block[2] + 1]);
             let (a, c) = (lattice.point(lo), lattice.point(hi));
@@ -81,66 +83,180 @@ pub(crate) fn cells(
                     (positive == 0 || positive == 8) && smallest > 1.5 * slope * half_diagonal
                 }
             };
-            if skipped {
-                return None;
+            !skipped
+        })
+        .collect();
+    let blocks_sampled: Vec<SampledBlock> = sampled
+        .par_iter()
+        .map(|&b| {
+            let block = block_of(b);
+            let lo = coarse_point(block);
+            let hi = coarse_point([block[0] + 1, block[1] + 1, block[2] + 1]);
+            let neighbours = core::array::from_fn(|k| {
+                let k = k as i64;
+                let n = [
+                    block[0] + k % 3 - 1,
+                    block[1] + (k / 3) % 3 - 1,
+                    block[2] + k / 9 - 1,
+                ];
+                if (0..3).any(|d| n[d] < 0 || n[d] >= blocks[d]) {
+                    return None;
+                }
+                let id = (n[0] + blocks[0] * (n[1] + blocks[1] * n[2])) as usize;
+                sampled.binary_search(&id).ok().map(|i| i as u32)
+            });
+            SampledBlock {
+                lo,
+                n: [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]],
+                neighbours,
             }
-            let n = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+        })
+        .collect();
+    // Each block samples the lattice points it owns (a point on a face between sampled blocks
+    // is sampled once, by one of them).
+    let owned: Vec<Vec<f64>> = blocks_sampled
+        .par_iter()
+        .map(|block| block.sample_owned(f, lattice))
+        .collect();
+    let samples = count + owned.iter().flatten().filter(|v| !v.is_nan()).count();
+    let results: Vec<(Vec<CrossedEdge>, Vec<EdgeTriangle>)> = blocks_sampled
+        .par_iter()
+        .map(|block| {
+            let values = block.gather(&blocks_sampled, &owned);
             let (mut edges, mut tris) = (Vec::new(), Vec::new());
-            let samples = block_cells(f, lattice, lo, n, &mut edges, &mut tris);
-            Some((edges, tris, samples))
+            block.cells(&values, &mut edges, &mut tris);
+            (edges, tris)
         })
         .collect();
     let mut edges = Vec::new();
     let mut tris = Vec::new();
-    let mut samples = count;
-    let mut skipped = 0;
-    for r in results {
-        match r {
-            Some((e, t, s)) => {
-                edges.extend(e);
-                tris.extend(t);
-                samples += s;
-            }
-            None => skipped += 1,
-        }
+    for (e, t) in results {
+        edges.extend(e);
+        tris.extend(t);
     }
-    (edges, tris, samples, skipped)
+    (edges, tris, samples, total - sampled.len())
 }
 
-/// Samples a block's lattice points and polygonizes its cells; returns the samples taken.
-fn block_cells(
-    f: &dyn ScalarField<3>,
-    lattice: &Lattice,
+/// A block that may hold surface.
+struct SampledBlock {
+    /// Its lowest lattice point.
     lo: [i64; 3],
+    /// Cells along each side (4, or fewer at the box's upper faces).
     n: [i64; 3],
-    edges: &mut Vec<CrossedEdge>,
-    tris: &mut Vec<EdgeTriangle>,
-) -> usize {
-    let m = [n[0] + 1, n[1] + 1, n[2] + 1];
-    let mut points = Vec::with_capacity((m[0] * m[1] * m[2]) as usize);
-    for k in 0..m[2] {
-        for j in 0..m[1] {
-            for i in 0..m[0] {
-                points.push(lattice.point([lo[0] + i, lo[1] + j, lo[2] + k]));
+    /// The sampled blocks among its 27 neighbours (itself included), as indices into the list
+    /// of sampled blocks; neighbour (dx, dy, dz) ∈ {−1, 0, 1}³ at (dx + 1) + 3 (dy + 1) +
+    /// 9 (dz + 1).
+    neighbours: [Option<u32>; 27],
+}
+
+impl SampledBlock {
+    /// Lattice points along each side.
+    fn points(&self) -> [i64; 3] {
+        [self.n[0] + 1, self.n[1] + 1, self.n[2] + 1]
+    }
+
+    /// The offset of the block that owns this block's local point `l`: of the sampled blocks
+    /// that hold the point (up to eight, on faces, edges and corners of blocks), the one
+    /// numbered highest, so that every block holding the point agrees.
+    fn owner(&self, l: [i64; 3]) -> [i64; 3] {
+        let choices = |d: usize| -> [i64; 2] {
+            if l[d] == self.n[d] {
+                [1, 0]
+            } else if l[d] == 0 {
+                [0, -1]
+            } else {
+                [0, 0]
+            }
+        };
+        // Block numbers grow with z, then y, then x: the first sampled offset in that order
+        // is the highest numbered.
+        for dz in choices(2) {
+            for dy in choices(1) {
+                for dx in choices(0) {
+                    if self.neighbours[offset_index([dx, dy, dz])].is_some() {
+                        return [dx, dy, dz];
+                    }
+                }
+            }
+        }
+        [0, 0, 0]
+    }
+
+    /// f at the lattice points this block owns; NaN at the others.
+    fn sample_owned(&self, f: &dyn ScalarField<3>, lattice: &Lattice) -> Vec<f64> {
+        let m = self.points();
+        let mut owned = vec![f64::NAN; (m[0] * m[1] * m[2]) as usize];
+        let mut at = Vec::new();
+        let mut points = Vec::new();
+        for k in 0..m[2] {
+            for j in 0..m[1] {
+                for i in 0..m[0] {
+                    if self.owner([i, j, k]) == [0, 0, 0] {
+                        at.push((i + m[0] * (j + m[1] * k)) as usize);
+                        points.push(lattice.point([
+                            self.lo[0] + i,
+                            self.lo[1] + j,
+                            self.lo[2] + k,
+                        ]));
+                    }
+                }
+            }
+        }
+        let mut values = vec![0.0; points.len()];
+        // Equal lengths by construction.
+        let _ = f.field_values(&points, &mut values);
+        for (i, v) in at.into_iter().zip(values) {
+            owned[i] = v;
+        }
+        owned
+    }
+
+    /// f at every lattice point of the block, from the blocks that own them.
+    fn gather(&self, blocks: &[SampledBlock], owned: &[Vec<f64>]) -> Vec<f64> {
+        let m = self.points();
+        let mut values = Vec::with_capacity((m[0] * m[1] * m[2]) as usize);
+        for k in 0..m[2] {
+            for j in 0..m[1] {
+                for i in 0..m[0] {
+                    let l = [i, j, k];
+                    let d = self.owner(l);
+                    let Some(o) = self.neighbours[offset_index(d)] else {
+                        values.push(f64::NAN);
+                        continue;
+                    };
+                    let owner = &blocks[o as usize];
+                    let q: [i64; 3] = core::array::from_fn(|a| self.lo[a] + l[a] - owner.lo[a]);
+                    let om = owner.points();
+                    values.push(owned[o as usize][(q[0] + om[0] * (q[1] + om[1] * q[2])) as usize]);
+                }
+            }
+        }
+        values
+    }
+
+    /// Polygonizes the block's cells from f at its lattice points.
+    fn cells(&self, values: &[f64], edges: &mut Vec<CrossedEdge>, tris: &mut Vec<EdgeTriangle>) {
+        let m = self.points();
+        let at = |i: i64, j: i64, k: i64| values[(i + m[0] * (j + m[1] * k)) as usize];
+        for k in 0..self.n[2] {
+            for j in 0..self.n[1] {
+                for i in 0..self.n[0] {
+                    let corners: [f64; 8] = core::array::from_fn(|c| {
+                        at(
+                            i + (c & 1) as i64,
+                            j + ((c >> 1) & 1) as i64,
+                            k + ((c >> 2) & 1) as i64,
+                        )
+                    });
+                    let cell = [self.lo[0] + i, self.lo[1] + j, self.lo[2] + k];
+                    cell_triangles(cell, &corners, tris, edges);
+                }
             }
         }
     }
-    let mut values = vec![0.0; points.len()];
-    let _ = f.field_values(&points, &mut values);
-    let at = |i: i64, j: i64, k: i64| values[(i + m[0] * (j + m[1] * k)) as usize];
-    for k in 0..n[2] {
-        for j in 0..n[1] {
-            for i in 0..n[0] {
-                let corners: [f64; 8] = core::array::from_fn(|c| {
-                    at(
-                        i + (c & 1) as i64,
-                        j + ((c >> 1) & 1) as i64,
-                        k + ((c >> 2) & 1) as i64,
-                    )
-                });
-                cell_triangles([lo[0] + i, lo[1] + j, lo[2] + k], &corners, tris, edges);
-            }
-        }
-    }
-    points.len()
+}
+
+/// The index of block offset d ∈ {−1, 0, 1}³ among a block's 27 neighbours.
+fn offset_index(d: [i64; 3]) -> usize {
+    ((d[0] + 1) + 3 * (d[1] + 1) + 9 * (d[2] + 1)) as usize
 }
