@@ -387,12 +387,18 @@ fn flip_slivers(
 ) {
     let p = |v: u32| positions[v as usize];
     let normal_of = |t: [u32; 3]| cross(sub(p(t[1]), p(t[0])), sub(p(t[2]), p(t[0])));
+    // Only slivers, and the triangles that flips make, are looked at again.
+    let mut candidates: Vec<usize> = (0..triangles.len())
+        .filter(|&t| alive[t] && is_sliver(triangles[t].map(p)))
+        .collect();
     for _pass in 0..3 {
         let mut flipped = 0;
-        for t1 in 0..triangles.len() {
-            if !alive[t1] || largest_cosine(triangles[t1].map(p)) <= min_cosine() {
+        let mut again = Vec::new();
+        for &t1 in &candidates {
+            if !alive[t1] || !is_sliver(triangles[t1].map(p)) {
                 continue;
             }
+            again.push(t1);
             // The longest edge a → b, and c across it.
             let tri = triangles[t1];
             let k = (0..3)
@@ -443,17 +449,32 @@ fn flip_slivers(
             around[b as usize].retain(|&t| t as usize != t1);
             around[c as usize].push(t2 as u32);
             around[d as usize].push(t1 as u32);
+            again.push(t2);
             flipped += 1;
         }
         if flipped == 0 {
             break;
         }
+        again.sort_unstable();
+        again.dedup();
+        candidates = again;
     }
 }
 
 /// The cosine of [`MIN_ANGLE`].
 fn min_cosine() -> f64 {
     MIN_ANGLE.to_radians().cos()
+}
+
+/// Whether a triangle has an angle below [`MIN_ANGLE`] (or is degenerate), without a square
+/// root: the cosine at a corner exceeds c when a·b > 0 and (a·b)² > c² |a|² |b|².
+fn is_sliver(t: [Vec3; 3]) -> bool {
+    let c = min_cosine();
+    (0..3).any(|k| {
+        let (a, b) = (sub(t[(k + 1) % 3], t[k]), sub(t[(k + 2) % 3], t[k]));
+        let (ab, aa, bb) = (dot(a, b), dot(a, a), dot(b, b));
+        !(aa > 0.0 && bb > 0.0) || (ab > 0.0 && ab * ab > c * c * aa * bb)
+    })
 }
 
 /// The cosine of a triangle's smallest angle (1 for a degenerate one).
