@@ -90,16 +90,19 @@ pub(crate) fn cell_triangles(
         return;
     }
     for tet in KUHN {
-        let ins: Vec<u8> = tet
-            .iter()
-            .copied()
-            .filter(|&c| inside[c as usize])
-            .collect();
-        let outs: Vec<u8> = tet
-            .iter()
-            .copied()
-            .filter(|&c| !inside[c as usize])
-            .collect();
+        // The tetrahedron's corners inside (f > 0) and outside, without allocating.
+        let (mut ins, mut n_in) = ([0u8; 4], 0);
+        let (mut outs, mut n_out) = ([0u8; 4], 0);
+        for c in tet {
+            if inside[c as usize] {
+                ins[n_in] = c;
+                n_in += 1;
+            } else {
+                outs[n_out] = c;
+                n_out += 1;
+            }
+        }
+        let (ins, outs) = (&ins[..n_in], &outs[..n_out]);
         let mut edge = |a: u8, b: u8| {
             // Kuhn tetrahedra have comparable corners: one is below the other on every axis.
             let (lo, hi) = if a & b == a { (a, b) } else { (b, a) };
@@ -118,24 +121,26 @@ pub(crate) fn cell_triangles(
             })
         };
         // Triangles as pairs of corners (the edges their vertices lie on).
-        let tris: Vec<[(u8, u8); 3]> = match (ins.len(), outs.len()) {
+        let (tris, count): ([[(u8, u8); 3]; 2], usize) = match (ins.len(), outs.len()) {
             (1, 3) => {
                 let a = ins[0];
-                vec![[(a, outs[0]), (a, outs[1]), (a, outs[2])]]
+                let t = [(a, outs[0]), (a, outs[1]), (a, outs[2])];
+                ([t, t], 1)
             }
             (3, 1) => {
                 let d = outs[0];
-                vec![[(ins[0], d), (ins[1], d), (ins[2], d)]]
+                let t = [(ins[0], d), (ins[1], d), (ins[2], d)];
+                ([t, t], 1)
             }
             (2, 2) => {
                 let (a, b, c, d) = (ins[0], ins[1], outs[0], outs[1]);
-                vec![[(a, c), (a, d), (b, d)], [(a, c), (b, d), (b, c)]]
+                ([[(a, c), (a, d), (b, d)], [(a, c), (b, d), (b, c)]], 2)
             }
             _ => continue,
         };
-        let (from, to) = (centre(&ins), centre(&outs));
+        let (from, to) = (centre(ins), centre(outs));
         let direction = [to[0] - from[0], to[1] - from[1], to[2] - from[2]];
-        for t in tris {
+        for &t in &tris[..count] {
             let [p, q, r] = t.map(|(a, b)| mid(a, b));
             let n = rbf_core::vec3::cross(rbf_core::vec3::sub(q, p), rbf_core::vec3::sub(r, p));
             let keys = t.map(|(a, b)| edge(a, b));

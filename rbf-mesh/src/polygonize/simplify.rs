@@ -197,7 +197,7 @@ fn collapse_edges(
         .filter(|e| e.0 < longest)
         .collect();
     edges.par_sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
-    let mut scratch = Scratch::default();
+    let mut scratch = Scratch::new(positions.len());
     for (l, a, b) in edges {
         if *vertices <= target && l >= short {
             break;
@@ -222,6 +222,12 @@ fn collapse_edges(
                 // Merge `from` into `to`.
                 for &t in &across {
                     alive[t as usize] = false;
+                    // The vertex across keeps only live triangles in its list.
+                    for w in triangles[t as usize] {
+                        if w != from && w != to {
+                            around[w as usize].retain(|&u| u != t);
+                        }
+                    }
                 }
                 let moved = std::mem::take(&mut around[from as usize]);
                 for &t in &moved {
@@ -245,32 +251,82 @@ fn collapse_edges(
 }
 
 /// Buffers reused by every [`collapsible`] check, so that checks allocate nothing.
-#[derive(Default)]
 struct Scratch {
-    /// The neighbours of the vertex that goes, sorted.
-    ring: Vec<u32>,
-    /// The neighbours of the vertex that stays, sorted.
-    theirs: Vec<u32>,
+    /// A mark per vertex: the vertices marked with the current mark are a set, emptied in
+    /// O(1) by taking the next mark.
+    mark: Vec<u32>,
+    current: u32,
     /// The live triangles at the vertex that stays, each with its corners sorted.
     at_to: Vec<[u32; 3]>,
 }
 
-/// The vertices joined to v by an edge, sorted, into `out`.
-fn neighbours(
+impl Scratch {
+    fn new(vertices: usize) -> Self {
+        Self {
+            mark: vec![0; vertices],
+            current: 0,
+            at_to: Vec::new(),
+        }
+    }
+
+    /// A new, empty set.
+    fn next_mark(&mut self) -> u32 {
+        if self.current == u32::MAX {
+            self.mark.fill(0);
+            self.current = 0;
+        }
+        self.current += 1;
+        self.current
+    }
+}
+
+/// Marks the vertices joined to v by an edge with a new mark; returns the mark and how many
+/// they are.
+fn mark_neighbours(
     triangles: &[[u32; 3]],
     alive: &[bool],
     around: &[Vec<u32>],
     v: u32,
-    out: &mut Vec<u32>,
-) {
-    out.clear();
+    scratch: &mut Scratch,
+) -> (u32, usize) {
+    let m = scratch.next_mark();
+    let mut count = 0;
     for &t in &around[v as usize] {
         if alive[t as usize] {
-            out.extend(triangles[t as usize].into_iter().filter(|&w| w != v));
+            for w in triangles[t as usize] {
+                if w != v && scratch.mark[w as usize] != m {
+                    scratch.mark[w as usize] = m;
+                    count += 1;
+                }
+            }
         }
     }
-    out.sort_unstable();
-    out.dedup();
+    (m, count)
+}
+
+/// How many of the vertices joined to v by an edge carry mark `m`.
+fn count_marked_neighbours(
+    triangles: &[[u32; 3]],
+    alive: &[bool],
+    around: &[Vec<u32>],
+    v: u32,
+    m: u32,
+    scratch: &mut Scratch,
+) -> usize {
+    // Each one counted is moved to a new mark, so that it counts once.
+    let counted = scratch.next_mark();
+    let mut count = 0;
+    for &t in &around[v as usize] {
+        if alive[t as usize] {
+            for w in triangles[t as usize] {
+                if w != v && scratch.mark[w as usize] == m {
+                    scratch.mark[w as usize] = counted;
+                    count += 1;
+                }
+            }
+        }
+    }
+    count
 }
 
 /// If merging `from` into `to` is allowed, the two triangles that vanish.
@@ -301,8 +357,8 @@ fn collapsible(
     }
     // Every edge at `from` must have two triangles (no border vertex is removed): a closed fan
     // has as many triangles as neighbours, an open one a neighbour more.
-    neighbours(triangles, alive, around, from, &mut scratch.ring);
-    if scratch.ring.len() != fan {
+    let (ring, ring_size) = mark_neighbours(triangles, alive, around, from, scratch);
+    if ring_size != fan {
         return None;
     }
     // Link condition: the ends' common neighbours are the two vertices across the edge.
@@ -312,12 +368,7 @@ fn collapsible(
             .find(|&w| w != from && w != to)
             .unwrap_or(from)
     });
-    neighbours(triangles, alive, around, to, &mut scratch.theirs);
-    let common = scratch
-        .ring
-        .iter()
-        .filter(|w| scratch.theirs.binary_search(w).is_ok())
-        .count();
+    let common = count_marked_neighbours(triangles, alive, around, to, ring, scratch);
     if common != 2 || opposite[0] == opposite[1] {
         return None;
     }
