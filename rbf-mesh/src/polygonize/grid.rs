@@ -50,10 +50,10 @@ pub(crate) fn cells(
             b / (blocks[0] * blocks[1]),
         ]
     };
-    // The blocks that may hold surface, in order of their number.
-    let sampled: Vec<usize> = (0..total)
+    // What the corners say of each block.
+    let verdicts: Vec<Verdict> = (0..total)
         .into_par_iter()
-        .filter(|&b| {
+        .map(|b| {
             let block = block_of(b);
             let lo = coarse_point(block);
             let hi = coarse_point([block[0] + 1, block[1] + 1, block[2] + 1]);
@@ -66,11 +66,15 @@ pub(crate) fn cells(
                     block[2] + (k >> 2),
                 ])
             });
-            let skipped = match skip {
-                BlockSkip::Never => false,
+            match skip {
+                BlockSkip::Never => Verdict::Sample,
                 BlockSkip::Proven => {
                     let centre = core::array::from_fn(|d| 0.5 * (a[d] + c[d]));
-                    f.direct().ball_bound(&centre, half_diagonal).one_sign()
+                    if f.direct().ball_bound(&centre, half_diagonal).one_sign() {
+                        Verdict::Skip
+                    } else {
+                        Verdict::Sample
+                    }
                 }
                 BlockSkip::Estimated => {
                     // Every point of the block is within half a diagonal of a corner.
@@ -80,12 +84,66 @@ pub(crate) fn cells(
                         smallest = smallest.min(values[k].abs());
                         positive += usize::from(values[k] > 0.0);
                     }
-                    (positive == 0 || positive == 8) && smallest > 1.5 * slope * half_diagonal
+                    let one_sign = positive == 0 || positive == 8;
+                    let whole = (0..3).all(|d| hi[d] - lo[d] == BLOCK);
+                    if one_sign && smallest > 1.5 * slope * half_diagonal {
+                        Verdict::Skip
+                    } else if one_sign && whole {
+                        Verdict::AskCentre {
+                            positive: positive == 8,
+                            smallest,
+                            slope,
+                        }
+                    } else {
+                        Verdict::Sample
+                    }
                 }
-            };
-            !skipped
+            }
         })
         .collect();
+    // Blocks whose corners have one sign but lie close to the surface: f and ∇f at their
+    // centres, in one batch. Every point of a block of 4³ cubes is within √5 cubes of a corner
+    // or the centre (half a diagonal is 2√3 cubes), so the same test with the centre skips
+    // blocks up to 1.5 times closer to the surface.
+    let asked: Vec<usize> = (0..total)
+        .filter(|&b| matches!(verdicts[b], Verdict::AskCentre { .. }))
+        .collect();
+    let centres: Vec<[f64; 3]> = asked
+        .iter()
+        .map(|&b| {
+            let lo = coarse_point(block_of(b));
+            lattice
+                .point(lo)
+                .map(|v| v + 0.5 * BLOCK as f64 * lattice.h)
+        })
+        .collect();
+    let mut centre_values = vec![0.0; centres.len()];
+    let mut centre_gradients = vec![[0.0; 3]; centres.len()];
+    // Equal lengths by construction.
+    let _ = f.field_values_and_gradients(&centres, &mut centre_values, &mut centre_gradients);
+    let reach = 5.0_f64.sqrt() * lattice.h;
+    let mut skip_asked = vec![false; total];
+    for (i, &b) in asked.iter().enumerate() {
+        if let Verdict::AskCentre {
+            positive,
+            smallest,
+            slope,
+        } = verdicts[b]
+        {
+            let v = centre_values[i];
+            let slope = slope.max(rbf_core::vec3::norm(centre_gradients[i]));
+            skip_asked[b] = (v > 0.0) == positive && smallest.min(v.abs()) > 1.5 * slope * reach;
+        }
+    }
+    // The blocks that may hold surface, in order of their number.
+    let sampled: Vec<usize> = (0..total)
+        .filter(|&b| match verdicts[b] {
+            Verdict::Skip => false,
+            Verdict::Sample => true,
+            Verdict::AskCentre { .. } => !skip_asked[b],
+        })
+        .collect();
+    let count = count + centres.len();
     let blocks_sampled: Vec<SampledBlock> = sampled
         .par_iter()
         .map(|&b| {
@@ -135,6 +193,22 @@ pub(crate) fn cells(
         tris.extend(t);
     }
     (edges, tris, samples, total - sampled.len())
+}
+
+/// What a block's corners say.
+#[derive(Clone, Copy)]
+enum Verdict {
+    /// The surface cannot cross it.
+    Skip,
+    /// It may hold surface.
+    Sample,
+    /// Its corners have one sign (`positive` or not) but are too close to the surface to
+    /// skip it: ask f at its centre. The smallest |f| and largest |∇f| at its corners.
+    AskCentre {
+        positive: bool,
+        smallest: f64,
+        slope: f64,
+    },
 }
 
 /// A block that may hold surface.

@@ -73,8 +73,10 @@ pub enum BlockSkip {
     Proven,
     /// Also when f at the block's eight corners has one sign and |f| there exceeds half the
     /// block's diagonal (the farthest any point is from a corner) times 1.5 × the largest |∇f|
-    /// at the corners (the sampled-gradient heuristic of Turk & O'Brien 2002, §7.2). Can miss a
-    /// component smaller than a block. The default.
+    /// at the corners (the sampled-gradient heuristic of Turk & O'Brien 2002, §7.2); or, where
+    /// that fails on one-signed corners, when f at the block's centre has that sign too and |f| at the nine
+    /// points exceeds √5 cubes (the farthest any point of the block is from one of them) times
+    /// 1.5 × the largest |∇f| at them. Can miss a component smaller than a block. The default.
     Estimated,
     /// Sample every lattice point.
     Never,
