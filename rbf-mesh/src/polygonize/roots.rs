@@ -43,6 +43,11 @@ struct Search {
 /// below 1e-3 of its length (Newton's error is then of the order of the step's square: the
 /// vertex is within about 1e-6 of an edge length of the surface), after at most `iterations`
 /// rounds.
+///
+/// `edges` lists the three edges of each triangle as [`cell_triangles`] makes them: triangle
+/// t's at 3t, 3t + 1 and 3t + 2.
+///
+/// [`cell_triangles`]: super::lattice::cell_triangles
 pub(crate) fn assemble(
     f: &dyn ScalarField<3>,
     lattice: &Lattice,
@@ -50,11 +55,23 @@ pub(crate) fn assemble(
     triangles: Vec<EdgeTriangle>,
     iterations: usize,
 ) -> Result<TriMesh, MeshError> {
-    // One vertex per distinct edge: sort the keys (in parallel) and drop repeats.
-    let mut edges = edges;
-    edges.par_sort_unstable_by_key(|e| e.0);
-    edges.dedup_by_key(|e| e.0);
-    let unique = edges;
+    // One vertex per distinct edge: sort the keys with where they came from (in parallel),
+    // then number them, dropping repeats.
+    let mut order: Vec<(u64, u32)> = edges
+        .iter()
+        .enumerate()
+        .map(|(i, e)| (e.0, i as u32))
+        .collect();
+    order.par_sort_unstable();
+    let mut unique: Vec<CrossedEdge> = Vec::new();
+    let mut vertex_of = vec![0u32; edges.len()];
+    for &(key, i) in &order {
+        if unique.last().is_none_or(|e| e.0 != key) {
+            unique.push(edges[i as usize]);
+        }
+        vertex_of[i as usize] = (unique.len() - 1) as u32;
+    }
+    drop(order);
     let ends: Vec<([f64; 3], [f64; 3])> = unique
         .iter()
         .map(|&(key, _, _)| {
@@ -96,12 +113,21 @@ pub(crate) fn assemble(
         .collect();
     // Collapse first, at the secant points (within a small fraction of a cell of the roots),
     // so that root finding runs on the vertices that stay.
-    let index = |k: u64| {
-        unique
-            .binary_search_by_key(&k, |e| e.0)
-            .map_or(0, |i| i as u32)
-    };
-    let triangles: Vec<[u32; 3]> = triangles.par_iter().map(|t| t.map(index)).collect();
+    // The lattice lists the three edges of each triangle as it makes it (triangle t's at
+    // 3t, 3t + 1, 3t + 2, in some order).
+    let triangles: Vec<[u32; 3]> = triangles
+        .par_iter()
+        .enumerate()
+        .map(|(t, keys)| {
+            keys.map(|k| {
+                (3 * t..3 * t + 3)
+                    .find(|&i| edges.get(i).is_some_and(|e| e.0 == k))
+                    .map_or(0, |i| vertex_of[i])
+            })
+        })
+        .collect();
+    drop(vertex_of);
+    drop(edges);
     let estimates: Vec<[f64; 3]> = searches
         .iter()
         .zip(&ends)
