@@ -2,7 +2,8 @@
 //! Comput. 14(2), 1993) with restarts: right preconditioning, modified Gram–Schmidt, Givens
 //! rotations. The caller judges convergence by the true residual, which is computed only when
 //! the recurrence's residual vector (free from the Arnoldi relation) says it may be met, and
-//! without leaving the cycle: a refused check costs one product, not a restart.
+//! without leaving the cycle: a refused check costs one product, not a restart (unless the
+//! caller asks for one, as when inexact products have taken the recurrence off course).
 
 use rayon::prelude::*;
 
@@ -70,7 +71,7 @@ pub(crate) fn fgmres(
     let mut target = match accept(&x, &r, iterations, initial) {
         Acceptance::Done => return end(x, iterations, true),
         Acceptance::GiveUp => return end(x, iterations, false),
-        Acceptance::Continue { target } => target,
+        Acceptance::Continue { target } | Acceptance::Restart { target } => target,
     };
     'cycles: loop {
         let beta = norm(&r);
@@ -145,6 +146,12 @@ pub(crate) fn fgmres(
                         trust = trust.min(largest / truth);
                     }
                 }
+                Acceptance::Restart { target: t } => {
+                    (target, trust) = (t, 1.0);
+                    x = xj;
+                    r = rj;
+                    continue 'cycles;
+                }
             }
             if last {
                 // Restart from the cycle's last iterate, whose true residual was just measured.
@@ -204,6 +211,12 @@ pub(crate) enum Acceptance {
     Continue {
         target: f64,
     },
+    /// Start a new cycle from this iterate and its true residual, then as `Continue`: the
+    /// recurrence has run ahead of the truth (inexact products took it off course), and only a
+    /// new Krylov space built on the true residual can close the gap.
+    Restart {
+        target: f64,
+    },
     /// Stop: the iterate will not get better (rounding has the last word).
     GiveUp,
 }
@@ -242,6 +255,62 @@ mod tests {
             }
             out[i] = t;
         }
+    }
+
+    /// Runs FGMRES on `apply` with products 1 % wrong for Krylov directions until the first
+    /// check the recurrence runs ahead of, after which they are exact; the judge answers that
+    /// check with `on_ahead`. Returns whether it converged to 1e-10 and the true residual.
+    fn inexact_then_exact(on_ahead: fn(f64) -> Acceptance) -> (bool, f64) {
+        let n = 120;
+        let b: Vec<f64> = (0..n).map(|i| ((i * 5) % 11) as f64 - 5.0).collect();
+        let exact = std::sync::atomic::AtomicBool::new(false);
+        let product = |v: &[f64], out: &mut [f64], residual: Option<f64>| {
+            apply(v, out, residual);
+            if residual.is_some() && !exact.load(std::sync::atomic::Ordering::Relaxed) {
+                for (i, o) in out.iter_mut().enumerate() {
+                    *o *= 1.0 + 0.01 * (((i * 3) % 7) as f64 - 3.0) / 3.0;
+                }
+            }
+        };
+        let end = fgmres(
+            &b,
+            &GmresLimits {
+                restart: 200,
+                max_iterations: 60,
+            },
+            &product,
+            &|v| v.iter().map(|x| x / 4.0).collect(),
+            &mut |_, r, iterations, claimed| {
+                let truth = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+                if truth < 1e-10 {
+                    Acceptance::Done
+                } else if iterations > 0 && claimed < 0.1 * truth {
+                    exact.store(true, std::sync::atomic::Ordering::Relaxed);
+                    on_ahead(1e-11)
+                } else {
+                    Acceptance::Continue { target: 1e-11 }
+                }
+            },
+            &mut |_, _| {},
+        );
+        let mut ax = vec![0.0; n];
+        apply(&end.x, &mut ax, None);
+        let truth = ax
+            .iter()
+            .zip(&b)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        (end.converged, truth)
+    }
+
+    #[test]
+    fn a_restart_closes_the_gap_inexact_products_leave() {
+        // Going on in the same cycle, the recurrence cannot see the error that the inexact
+        // products put into its basis; a new cycle on the true residual can.
+        let (converged, truth) = inexact_then_exact(|target| Acceptance::Continue { target });
+        assert!(!converged && truth > 1e-6, "{truth:e}");
+        let (converged, truth) = inexact_then_exact(|target| Acceptance::Restart { target });
+        assert!(converged && truth < 1e-10, "{truth:e}");
     }
 
     #[test]

@@ -224,9 +224,12 @@ pub fn solve_iterative<const D: usize>(
             Acceptance::Done
         } else if iteration > 0 && products.stop_relaxing() {
             // The recurrence said the tolerance may be met and the truth did not: relaxed
-            // products may have taken it off course. Exact products from here on.
+            // products may have taken it off course. Exact products from here on, in a new
+            // cycle from this iterate's true residual (continuing the cycle, the recurrence
+            // stayed twenty times ahead of a residual that no longer fell: 4.7e-5 at 10⁵ rows
+            // asked for 1e-5).
             ahead = false;
-            Acceptance::Continue {
+            Acceptance::Restart {
                 target: 0.5 * tolerance * hmax,
             }
         } else if (was_ahead && ahead && !halved)
