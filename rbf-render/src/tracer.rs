@@ -397,9 +397,33 @@ impl<'s, 'm> Tracer<'s, 'm> {
         limits: &[f64],
         counts: &mut TraceCounts,
     ) -> Vec<Option<f64>> {
+        self.trace_with_normals(rays, limits, counts).0
+    }
+
+    /// [`Tracer::trace`], with the outward normal at each hit where tracing found it on the
+    /// way (the sampled band's last Newton step); the others are left to [`Tracer::normals`].
+    pub(crate) fn trace_with_normals(
+        &self,
+        rays: &[Ray],
+        limits: &[f64],
+        counts: &mut TraceCounts,
+    ) -> (Vec<Option<f64>>, Vec<Option<Vec3>>) {
         if let Some(band) = &self.band {
             return self.trace_band(band, rays, limits, counts);
         }
+        (
+            self.trace_stepping(rays, limits, counts),
+            vec![None; rays.len()],
+        )
+    }
+
+    /// Sphere tracing (no band): the first hit of each ray before its limit.
+    fn trace_stepping(
+        &self,
+        rays: &[Ray],
+        limits: &[f64],
+        counts: &mut TraceCounts,
+    ) -> Vec<Option<f64>> {
         let mut hits = vec![None; rays.len()];
         let mut t = vec![0.0; rays.len()];
         let mut end = vec![0.0; rays.len()];
