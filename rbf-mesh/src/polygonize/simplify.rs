@@ -209,7 +209,7 @@ fn collapse_edges(
             continue;
         }
         for (from, to) in [(a, b), (b, a)] {
-            if let Some(across) = collapsible(
+            let across = match collapsible(
                 positions,
                 cell,
                 &*triangles,
@@ -219,33 +219,36 @@ fn collapse_edges(
                 to,
                 &mut scratch,
             ) {
-                // Merge `from` into `to`.
-                for &t in &across {
-                    alive[t as usize] = false;
-                    // The vertex across keeps only live triangles in its list.
-                    for w in triangles[t as usize] {
-                        if w != from && w != to {
-                            around[w as usize].retain(|&u| u != t);
-                        }
+                Ok(across) => across,
+                Err(Refusal::Edge) => break,
+                Err(Refusal::Direction) => continue,
+            };
+            // Merge `from` into `to`.
+            for &t in &across {
+                alive[t as usize] = false;
+                // The vertex across keeps only live triangles in its list.
+                for w in triangles[t as usize] {
+                    if w != from && w != to {
+                        around[w as usize].retain(|&u| u != t);
                     }
                 }
-                let moved = std::mem::take(&mut around[from as usize]);
-                for &t in &moved {
-                    if !alive[t as usize] {
-                        continue;
-                    }
-                    for v in triangles[t as usize].iter_mut() {
-                        if *v == from {
-                            *v = to;
-                        }
-                    }
-                    around[to as usize].push(t);
-                }
-                around[to as usize].retain(|&t| alive[t as usize]);
-                merged[from as usize] = to;
-                *vertices -= 1;
-                break;
             }
+            let moved = std::mem::take(&mut around[from as usize]);
+            for &t in &moved {
+                if !alive[t as usize] {
+                    continue;
+                }
+                for v in triangles[t as usize].iter_mut() {
+                    if *v == from {
+                        *v = to;
+                    }
+                }
+                around[to as usize].push(t);
+            }
+            around[to as usize].retain(|&t| alive[t as usize]);
+            merged[from as usize] = to;
+            *vertices -= 1;
+            break;
         }
     }
 }
@@ -329,6 +332,14 @@ fn count_marked_neighbours(
     count
 }
 
+/// Why a collapse was refused.
+enum Refusal {
+    /// Not an inner edge, or the link condition fails: the other way round too.
+    Edge,
+    /// Not this way round (`from` on the border, or a triangle would turn or thin).
+    Direction,
+}
+
 /// If merging `from` into `to` is allowed, the two triangles that vanish.
 #[allow(clippy::too_many_arguments)]
 fn collapsible(
@@ -340,7 +351,7 @@ fn collapsible(
     from: u32,
     to: u32,
     scratch: &mut Scratch,
-) -> Option<[u32; 2]> {
+) -> Result<[u32; 2], Refusal> {
     let live = |t: &&u32| alive[**t as usize];
     let (mut shared, mut sharing, mut fan) = ([0u32; 2], 0, 0);
     for &t in around[from as usize].iter().filter(live) {
@@ -353,13 +364,13 @@ fn collapsible(
         }
     }
     if sharing != 2 {
-        return None; // the border, or not an edge
+        return Err(Refusal::Edge); // the border, or not an edge
     }
     // Every edge at `from` must have two triangles (no border vertex is removed): a closed fan
     // has as many triangles as neighbours, an open one a neighbour more.
     let (ring, ring_size) = mark_neighbours(triangles, alive, around, from, scratch);
     if ring_size != fan {
-        return None;
+        return Err(Refusal::Direction);
     }
     // Link condition: the ends' common neighbours are the two vertices across the edge.
     let opposite = shared.map(|t| {
@@ -370,7 +381,7 @@ fn collapsible(
     });
     let common = count_marked_neighbours(triangles, alive, around, to, ring, scratch);
     if common != 2 || opposite[0] == opposite[1] {
-        return None;
+        return Err(Refusal::Edge);
     }
     // No triangle may turn over or become a sliver. A triangle too small to have a reliable
     // normal of its own is compared with the area-weighted normal around `from`.
@@ -404,7 +415,7 @@ fn collapsible(
         let mut sorted = new;
         sorted.sort_unstable();
         if scratch.at_to.contains(&sorted) {
-            return None;
+            return Err(Refusal::Direction);
         }
         let (mut n_old, n_new) = (normal_of(old), normal_of(new));
         if norm(n_old) < tiny {
@@ -412,18 +423,18 @@ fn collapsible(
         }
         let (l_old, l_new) = (norm(n_old), norm(n_new));
         if !(l_new > 0.0) || dot(n_old, n_new) < 0.5 * l_old * l_new {
-            return None;
+            return Err(Refusal::Direction);
         }
         // A short edge's collapse moves a vertex too little to matter; longer ones must not
         // make slivers.
         if !short {
             let before = largest_cosine(old.map(p));
             if largest_cosine(new.map(p)) > min_cosine().max(before) {
-                return None;
+                return Err(Refusal::Direction);
             }
         }
     }
-    Some(shared)
+    Ok(shared)
 }
 
 /// Flips the longest edge of each triangle with an angle below [`MIN_ANGLE`] (a cap: one
