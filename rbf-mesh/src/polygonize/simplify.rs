@@ -78,8 +78,9 @@ fn collapse_in_parts(
     if parts < 2 {
         return (merged, triangles);
     }
-    let part_of = |v: u32| v as usize * parts / n;
-    let first = |p: usize| (p * n).div_ceil(parts);
+    // In u64: products of counts can pass u32 where usize is 32 bits (WebAssembly).
+    let part_of = |v: u32| (v as u64 * parts as u64 / n as u64) as usize;
+    let first = |p: usize| (p as u64 * n as u64).div_ceil(parts as u64) as usize;
     let mut frozen = vec![false; n];
     let mut inside: Vec<Vec<[u32; 3]>> = vec![Vec::new(); parts];
     let mut seam = Vec::new();
@@ -100,7 +101,7 @@ fn collapse_in_parts(
         .map(|(p, tris)| {
             let (lo, hi) = (first(p), first(p + 1));
             let local = tris.into_iter().map(|t| t.map(|v| v - lo as u32)).collect();
-            let part_target = target * (hi - lo) / n;
+            let part_target = (target as u64 * (hi - lo) as u64 / n as u64) as usize;
             let (merged, tris) = collapse_whole(
                 &positions[lo..hi],
                 &frozen[lo..hi],
