@@ -126,8 +126,9 @@ impl Tracer<'_, '_> {
                 let mut next = p.t - f / rate;
                 let bracketed = p.outside < p.inside && p.inside.is_finite();
                 let in_window = next >= p.window.0 && next <= p.window.1;
-                let newton = !(!(next.is_finite() && in_window)
-                    || (bracketed && !(next > p.outside && next < p.inside)));
+                let in_bracket = !bracketed || (next > p.outside && next < p.inside);
+                // Whether the Newton step is taken (else the bracket or window is halved).
+                let newton = next.is_finite() && in_window && in_bracket;
                 if !newton {
                     next = if bracketed && p.outside.is_finite() {
                         0.5 * (p.outside + p.inside)

@@ -51,7 +51,7 @@ pub(crate) fn cells(
         ]
     };
     // What the corners say of each block.
-    let verdicts: Vec<Verdict> = (0..total)
+    let mut verdicts: Vec<Verdict> = (0..total)
         .into_par_iter()
         .map(|b| {
             let block = block_of(b);
@@ -122,7 +122,6 @@ pub(crate) fn cells(
     // Equal lengths by construction.
     let _ = f.field_values_and_gradients(&centres, &mut centre_values, &mut centre_gradients);
     let reach = 5.0_f64.sqrt() * lattice.h;
-    let mut skip_asked = vec![false; total];
     for (i, &b) in asked.iter().enumerate() {
         if let Verdict::AskCentre {
             positive,
@@ -132,16 +131,13 @@ pub(crate) fn cells(
         {
             let v = centre_values[i];
             let slope = slope.max(rbf_core::vec3::norm(centre_gradients[i]));
-            skip_asked[b] = (v > 0.0) == positive && smallest.min(v.abs()) > 1.5 * slope * reach;
+            let skip = (v > 0.0) == positive && smallest.min(v.abs()) > 1.5 * slope * reach;
+            verdicts[b] = if skip { Verdict::Skip } else { Verdict::Sample };
         }
     }
     // The blocks that may hold surface, in order of their number.
     let sampled: Vec<usize> = (0..total)
-        .filter(|&b| match verdicts[b] {
-            Verdict::Skip => false,
-            Verdict::Sample => true,
-            Verdict::AskCentre { .. } => !skip_asked[b],
-        })
+        .filter(|&b| matches!(verdicts[b], Verdict::Sample))
         .collect();
     let count = count + centres.len();
     let blocks_sampled: Vec<SampledBlock> = sampled

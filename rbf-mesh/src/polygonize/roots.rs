@@ -31,7 +31,6 @@ struct Search {
     /// Lengths of the last step and of the one before (edge parameter).
     step: f64,
     step_before: f64,
-    done: bool,
 }
 
 /// Builds the mesh: one vertex per crossed edge, placed where f = 0. The first round evaluates
@@ -108,7 +107,6 @@ pub(crate) fn assemble(
             gradient: [0.0; 3],
             step: 1.0,
             step_before: 1.0,
-            done: false,
         })
         .collect();
     // Collapse first, at the secant points (within a small fraction of a cell of the roots),
@@ -166,7 +164,6 @@ pub(crate) fn assemble(
             let s = &mut searches[i];
             s.gradient = g;
             if !first && (v.abs() <= tolerance[i] || last) {
-                s.done = true;
                 continue;
             }
             // Shrink the bracket to the side where the sign changes.
@@ -203,11 +200,9 @@ pub(crate) fn assemble(
             // A Newton step this small leaves an error of the order of its square: accept it
             // without another evaluation (the gradient kept is from 1e-3 of an edge away).
             if inside && (newton - t).abs() < NEWTON_DONE {
-                s.done = true;
                 continue;
             }
             if (hi - lo) < 1e-12 && !first {
-                s.done = true;
                 continue;
             }
             still.push(i);

@@ -284,6 +284,26 @@ impl Scratch {
     }
 }
 
+/// Calls `visit` for each vertex joined to v by an edge of a live triangle (a vertex once per
+/// triangle it shares with v).
+fn for_each_neighbour(
+    triangles: &[[u32; 3]],
+    alive: &[bool],
+    around: &[Vec<u32>],
+    v: u32,
+    mut visit: impl FnMut(u32),
+) {
+    for &t in &around[v as usize] {
+        if alive[t as usize] {
+            for w in triangles[t as usize] {
+                if w != v {
+                    visit(w);
+                }
+            }
+        }
+    }
+}
+
 /// Marks the vertices joined to v by an edge with a new mark; returns the mark and how many
 /// they are.
 fn mark_neighbours(
@@ -295,16 +315,12 @@ fn mark_neighbours(
 ) -> (u32, usize) {
     let m = scratch.next_mark();
     let mut count = 0;
-    for &t in &around[v as usize] {
-        if alive[t as usize] {
-            for w in triangles[t as usize] {
-                if w != v && scratch.mark[w as usize] != m {
-                    scratch.mark[w as usize] = m;
-                    count += 1;
-                }
-            }
+    for_each_neighbour(triangles, alive, around, v, |w| {
+        if scratch.mark[w as usize] != m {
+            scratch.mark[w as usize] = m;
+            count += 1;
         }
-    }
+    });
     (m, count)
 }
 
@@ -320,16 +336,12 @@ fn count_marked_neighbours(
     // Each one counted is moved to a new mark, so that it counts once.
     let counted = scratch.next_mark();
     let mut count = 0;
-    for &t in &around[v as usize] {
-        if alive[t as usize] {
-            for w in triangles[t as usize] {
-                if w != v && scratch.mark[w as usize] == m {
-                    scratch.mark[w as usize] = counted;
-                    count += 1;
-                }
-            }
+    for_each_neighbour(triangles, alive, around, v, |w| {
+        if scratch.mark[w as usize] == m {
+            scratch.mark[w as usize] = counted;
+            count += 1;
         }
-    }
+    });
     count
 }
 
