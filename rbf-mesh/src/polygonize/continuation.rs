@@ -1,10 +1,11 @@
 //! Continuation (Bloomenthal 1988): start at cells near points on the surface and crawl across
 //! the lattice through faces the surface crosses, evaluating f only near the surface.
 
+use rayon::prelude::*;
 use rbf_core::ScalarField;
 
-use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
-use crate::meshes::hash::{FastMap, FastSet};
+use super::lattice::{CrossedEdge, Lattice, cell_triangles, edge_of};
+use crate::meshes::hash::FastMap;
 
 /// The six face neighbours of a cell, and the corners (bits) on the shared face.
 const FACES: [([i64; 3], [u8; 4]); 6] = [
@@ -16,15 +17,111 @@ const FACES: [([i64; 3], [u8; 4]); 6] = [
     ([0, 0, 1], [4, 5, 6, 7]),
 ];
 
-/// Crossed edges and triangles of the cells reachable from the seeds, and how many lattice
-/// points were evaluated.
+/// Lattice points (and cells) are stored in blocks of `BLOCK`³, so that a lookup hashes once
+/// per block rather than once per point.
+const BLOCK: i64 = 8;
+
+/// Lattice points in a block.
+const POINTS: usize = (BLOCK * BLOCK * BLOCK) as usize;
+
+/// Per block: f at its lattice points (NaN where not yet sampled, +∞ while queued for
+/// sampling), which of its cells have been visited (a bit each), and the vertex on each of the
+/// seven lattice edges that leave each point upward (x, y, xy, z, xz, yz, xyz), `u32::MAX` if
+/// none yet (made when the block first has one).
+struct Block {
+    values: [f64; POINTS],
+    visited: [u64; POINTS / 64],
+    vertices: Vec<u32>,
+}
+
+/// Lattice points, cells and edges by block.
+#[derive(Default)]
+struct Blocks {
+    index: FastMap<[i64; 3], u32>,
+    blocks: Vec<Block>,
+    /// The block looked up last, by key: consecutive lookups mostly fall in one block.
+    last: Option<([i64; 3], u32)>,
+}
+
+impl Blocks {
+    /// The block holding lattice point (or cell) p, made if new, and p's index in it.
+    fn slot(&mut self, p: [i64; 3]) -> (&mut Block, usize) {
+        let key = p.map(|c| c.div_euclid(BLOCK));
+        let local = p.map(|c| c.rem_euclid(BLOCK));
+        let b = match self.last {
+            Some((k, b)) if k == key => b,
+            _ => {
+                let next = self.blocks.len() as u32;
+                let b = *self.index.entry(key).or_insert(next);
+                if b == next {
+                    self.blocks.push(Block {
+                        values: [f64::NAN; POINTS],
+                        visited: [0; POINTS / 64],
+                        vertices: Vec::new(),
+                    });
+                }
+                self.last = Some((key, b));
+                b
+            }
+        };
+        let i = (local[0] + BLOCK * (local[1] + BLOCK * local[2])) as usize;
+        (&mut self.blocks[b as usize], i)
+    }
+
+    /// Marks the cell visited; whether it was not before.
+    fn visit(&mut self, cell: [i64; 3]) -> bool {
+        let (block, i) = self.slot(cell);
+        let (word, bit) = (i / 64, 1u64 << (i % 64));
+        let new = block.visited[word] & bit == 0;
+        block.visited[word] |= bit;
+        new
+    }
+
+    /// The vertex on the edge with this key, numbered next (and listed in `edges`) if new.
+    fn vertex(&mut self, key: u64, lo: f64, hi: f64, edges: &mut Vec<CrossedEdge>) -> u32 {
+        let (p, _) = edge_of(key);
+        let next = edges.len() as u32;
+        let (block, i) = self.slot(p);
+        if block.vertices.is_empty() {
+            block.vertices = vec![u32::MAX; 7 * POINTS];
+        }
+        let slot = &mut block.vertices[7 * i + (key & 7) as usize - 1];
+        if *slot == u32::MAX {
+            *slot = next;
+            edges.push((key, lo, hi));
+        }
+        *slot
+    }
+
+    /// Lattice points sampled.
+    fn samples(&self) -> usize {
+        self.blocks
+            .iter()
+            .map(|b| b.values.iter().filter(|v| !v.is_nan()).count())
+            .sum()
+    }
+}
+
+/// The eight corners of a cell, by corner bits (x = 1, y = 2, z = 4).
+fn corners_of(cell: [i64; 3]) -> [[i64; 3]; 8] {
+    core::array::from_fn(|c| {
+        let c = c as i64;
+        [
+            cell[0] + (c & 1),
+            cell[1] + ((c >> 1) & 1),
+            cell[2] + (c >> 2),
+        ]
+    })
+}
+
+/// The crossed edges of the cells reachable from the seeds, each once, the triangles on their
+/// indices, and how many lattice points were evaluated.
 pub(crate) fn cells(
     f: &dyn ScalarField<3>,
     lattice: &Lattice,
     seeds: &[[f64; 3]],
-) -> (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize) {
-    let mut values: FastMap<[i64; 3], f64> = FastMap::default();
-    let mut visited: FastSet<[i64; 3]> = FastSet::default();
+) -> (Vec<CrossedEdge>, Vec<[u32; 3]>, usize) {
+    let mut blocks = Blocks::default();
     let mut frontier: Vec<[i64; 3]> = Vec::new();
     // Each seed starts the cells around it: a seed on the surface lies in or next to a cell
     // the surface crosses.
@@ -32,57 +129,84 @@ pub(crate) fn cells(
         let c = lattice.cell_of(*s);
         for n in 0..27_i64 {
             let cell = [c[0] + n % 3 - 1, c[1] + (n / 3) % 3 - 1, c[2] + n / 9 - 1];
-            if lattice.contains_cell(cell) && visited.insert(cell) {
+            if lattice.contains_cell(cell) && blocks.visit(cell) {
                 frontier.push(cell);
             }
         }
     }
     let (mut edges, mut tris) = (Vec::new(), Vec::new());
+    let mut needed: Vec<[i64; 3]> = Vec::new();
+    let mut points: Vec<[f64; 3]> = Vec::new();
+    let mut found: Vec<f64> = Vec::new();
     while !frontier.is_empty() {
-        let mut needed: Vec<[i64; 3]> = Vec::new();
-        let mut queued: FastSet<[i64; 3]> = FastSet::default();
-        for cell in &frontier {
-            for c in 0..8_i64 {
-                let p = [
-                    cell[0] + (c & 1),
-                    cell[1] + ((c >> 1) & 1),
-                    cell[2] + (c >> 2),
-                ];
-                if !values.contains_key(&p) && queued.insert(p) {
+        needed.clear();
+        for &cell in &frontier {
+            for p in corners_of(cell) {
+                let (block, i) = blocks.slot(p);
+                if block.values[i].is_nan() {
+                    block.values[i] = f64::INFINITY;
                     needed.push(p);
                 }
             }
         }
-        let points: Vec<[f64; 3]> = needed.iter().map(|&p| lattice.point(p)).collect();
-        let mut found = vec![0.0; points.len()];
+        points.clear();
+        points.extend(needed.iter().map(|&p| lattice.point(p)));
+        found.clear();
+        found.resize(points.len(), 0.0);
         // Equal lengths by construction.
         let _ = f.field_values(&points, &mut found);
-        for (p, v) in needed.into_iter().zip(found) {
-            values.insert(p, v);
+        for (&p, &v) in needed.iter().zip(&found) {
+            let (block, i) = blocks.slot(p);
+            block.values[i] = v;
         }
         let mut next = Vec::new();
         for cell in frontier {
-            let corners: [f64; 8] = core::array::from_fn(|c| {
-                let c = c as i64;
-                values[&[
-                    cell[0] + (c & 1),
-                    cell[1] + ((c >> 1) & 1),
-                    cell[2] + (c >> 2),
-                ]]
+            let corners: [f64; 8] = corners_of(cell).map(|p| {
+                let (block, i) = blocks.slot(p);
+                block.values[i]
             });
-            cell_triangles(cell, &corners, &mut tris, &mut edges);
+            cell_triangles(cell, &corners, &mut tris, |key, lo, hi| {
+                blocks.vertex(key, lo, hi, &mut edges)
+            });
             for (step, face) in FACES {
                 let signs = face.map(|c| corners[c as usize] > 0.0);
                 if signs.iter().all(|&s| s) || signs.iter().all(|&s| !s) {
                     continue;
                 }
                 let n = [cell[0] + step[0], cell[1] + step[1], cell[2] + step[2]];
-                if lattice.contains_cell(n) && visited.insert(n) {
+                if lattice.contains_cell(n) && blocks.visit(n) {
                     next.push(n);
                 }
             }
         }
         frontier = next;
     }
-    (edges, tris, values.len())
+    let samples = blocks.samples();
+    drop(blocks);
+    let (edges, tris) = in_lattice_order(edges, tris);
+    (edges, tris, samples)
+}
+
+/// The edges renumbered in the order of their keys (along x, then y, then z), which the
+/// simplification's parts rely on (see `simplify::collapse_in_parts`).
+fn in_lattice_order(
+    edges: Vec<CrossedEdge>,
+    tris: Vec<[u32; 3]>,
+) -> (Vec<CrossedEdge>, Vec<[u32; 3]>) {
+    let mut order: Vec<(u64, u32)> = edges
+        .iter()
+        .enumerate()
+        .map(|(i, e)| (e.0, i as u32))
+        .collect();
+    order.par_sort_unstable();
+    let mut new_index = vec![0u32; edges.len()];
+    for (new, &(_, old)) in order.iter().enumerate() {
+        new_index[old as usize] = new as u32;
+    }
+    let edges = order.iter().map(|&(_, old)| edges[old as usize]).collect();
+    let tris = tris
+        .into_par_iter()
+        .map(|t| t.map(|v| new_index[v as usize]))
+        .collect();
+    (edges, tris)
 }

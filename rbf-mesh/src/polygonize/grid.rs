@@ -7,17 +7,18 @@ use rayon::prelude::*;
 use rbf_core::ScalarField;
 
 use super::BlockSkip;
-use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, cell_triangles};
+use super::lattice::{CrossedEdge, Lattice, cell_triangles};
 
 /// Cells along each side of a block.
 const BLOCK: i64 = 4;
 
-/// Crossed edges, triangles, lattice points sampled and blocks skipped.
+/// Crossed edges (an edge once for each triangle on it), triangles on their indices, lattice
+/// points sampled and blocks skipped.
 pub(crate) fn cells(
     f: &dyn ScalarField<3>,
     lattice: &Lattice,
     skip: BlockSkip,
-) -> (Vec<CrossedEdge>, Vec<EdgeTriangle>, usize, usize) {
+) -> (Vec<CrossedEdge>, Vec<[u32; 3]>, usize, usize) {
     let blocks: [i64; 3] = core::array::from_fn(|d| (lattice.cells[d] + BLOCK - 1) / BLOCK);
     let coarse_n: [i64; 3] = core::array::from_fn(|d| blocks[d] + 1);
     let coarse_point = |i: [i64; 3]| -> [i64; 3] {
@@ -173,7 +174,7 @@ pub(crate) fn cells(
         .map(|block| block.sample_owned(f, lattice))
         .collect();
     let samples = count + owned.iter().flatten().filter(|v| !v.is_nan()).count();
-    let results: Vec<(Vec<CrossedEdge>, Vec<EdgeTriangle>)> = blocks_sampled
+    let results: Vec<(Vec<CrossedEdge>, Vec<[u32; 3]>)> = blocks_sampled
         .par_iter()
         .map(|block| {
             let values = block.gather(&blocks_sampled, &owned);
@@ -185,8 +186,10 @@ pub(crate) fn cells(
     let mut edges = Vec::new();
     let mut tris = Vec::new();
     for (e, t) in results {
+        // Each block numbers the edges it lists from 0.
+        let offset = edges.len() as u32;
         edges.extend(e);
-        tris.extend(t);
+        tris.extend(t.into_iter().map(|t| t.map(|i| i + offset)));
     }
     (edges, tris, samples, total - sampled.len())
 }
@@ -305,7 +308,8 @@ impl SampledBlock {
     }
 
     /// Polygonizes the block's cells from f at its lattice points.
-    fn cells(&self, values: &[f64], edges: &mut Vec<CrossedEdge>, tris: &mut Vec<EdgeTriangle>) {
+    /// Triangles on indices into `edges`, which lists an edge once for each triangle on it.
+    fn cells(&self, values: &[f64], edges: &mut Vec<CrossedEdge>, tris: &mut Vec<[u32; 3]>) {
         let m = self.points();
         let at = |i: i64, j: i64, k: i64| values[(i + m[0] * (j + m[1] * k)) as usize];
         for k in 0..self.n[2] {
@@ -319,7 +323,10 @@ impl SampledBlock {
                         )
                     });
                     let cell = [self.lo[0] + i, self.lo[1] + j, self.lo[2] + k];
-                    cell_triangles(cell, &corners, tris, edges);
+                    cell_triangles(cell, &corners, tris, |key, lo, hi| {
+                        edges.push((key, lo, hi));
+                        (edges.len() - 1) as u32
+                    });
                 }
             }
         }

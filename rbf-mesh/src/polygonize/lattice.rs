@@ -70,85 +70,133 @@ const KUHN: [[u8; 4]; 6] = [
     [0, 4, 6, 7],
 ];
 
-/// A triangle given by three lattice edges.
-pub(crate) type EdgeTriangle = [u64; 3];
-
 /// A lattice edge crossed by the surface, with f at its lower and upper ends.
 pub(crate) type CrossedEdge = (u64, f64, f64);
 
-/// Appends the triangles of the cell at `cell` (lowest corner) given its eight corner values
-/// (index = corner bits) to `out`, oriented so that their normals point from inside (f > 0) to
-/// outside, and the edges they lie on to `edges` (possibly more than once).
-pub(crate) fn cell_triangles(
-    cell: [i64; 3],
-    values: &[f64; 8],
-    out: &mut Vec<EdgeTriangle>,
-    edges: &mut Vec<CrossedEdge>,
-) {
-    let inside: [bool; 8] = core::array::from_fn(|c| values[c] > 0.0);
-    if inside.iter().all(|&s| s) || inside.iter().all(|&s| !s) {
-        return;
-    }
-    for tet in KUHN {
-        // The tetrahedron's corners inside (f > 0) and outside, without allocating.
-        let (mut ins, mut n_in) = ([0u8; 4], 0);
-        let (mut outs, mut n_out) = ([0u8; 4], 0);
-        for c in tet {
-            if inside[c as usize] {
-                ins[n_in] = c;
-                n_in += 1;
-            } else {
-                outs[n_out] = c;
-                n_out += 1;
+/// The triangles of one sign case of a cube: each as its three edges, an edge as its lower and
+/// upper corner, oriented from inside to outside.
+#[derive(Clone, Copy)]
+struct CubeCase {
+    count: u8,
+    triangles: [[(u8, u8); 3]; 12],
+}
+
+/// The triangles of each of the 256 sign cases (bit c set when corner c is inside), made once.
+fn cube_cases() -> &'static [CubeCase; 256] {
+    static CASES: std::sync::OnceLock<Box<[CubeCase; 256]>> = std::sync::OnceLock::new();
+    CASES.get_or_init(|| {
+        let mut cases = Box::new(
+            [CubeCase {
+                count: 0,
+                triangles: [[(0, 0); 3]; 12],
+            }; 256],
+        );
+        for (bits, case) in cases.iter_mut().enumerate() {
+            for t in case_triangles(bits as u8) {
+                case.triangles[case.count as usize] = t;
+                case.count += 1;
             }
         }
-        let (ins, outs) = (&ins[..n_in], &outs[..n_out]);
-        let mut edge = |a: u8, b: u8| {
-            // Kuhn tetrahedra have comparable corners: one is below the other on every axis.
-            let (lo, hi) = if a & b == a { (a, b) } else { (b, a) };
-            let p = corner(lo);
-            let key = edge_key([cell[0] + p[0], cell[1] + p[1], cell[2] + p[2]], hi & !lo);
-            edges.push((key, values[lo as usize], values[hi as usize]));
-            key
-        };
-        let mid = |a: u8, b: u8| {
-            let (pa, pb) = (corner(a), corner(b));
-            core::array::from_fn::<f64, 3, _>(|d| 0.5 * (pa[d] + pb[d]) as f64)
-        };
-        let centre = |cs: &[u8]| {
-            core::array::from_fn::<f64, 3, _>(|d| {
-                cs.iter().map(|&c| corner(c)[d] as f64).sum::<f64>() / cs.len() as f64
-            })
-        };
+        cases
+    })
+}
+
+/// The triangles of the Kuhn tetrahedra of a cube whose inside corners are the set bits, each
+/// as three (lower, upper) corner pairs, oriented so that its normal points from the inside
+/// corners of its tetrahedron to the outside ones.
+fn case_triangles(bits: u8) -> Vec<[(u8, u8); 3]> {
+    let inside = |c: u8| bits & (1 << c) != 0;
+    let mid = |a: u8, b: u8| {
+        let (pa, pb) = (corner(a), corner(b));
+        core::array::from_fn::<f64, 3, _>(|d| 0.5 * (pa[d] + pb[d]) as f64)
+    };
+    let centre = |cs: &[u8]| {
+        core::array::from_fn::<f64, 3, _>(|d| {
+            cs.iter().map(|&c| corner(c)[d] as f64).sum::<f64>() / cs.len() as f64
+        })
+    };
+    // Kuhn tetrahedra have comparable corners: one is below the other on every axis.
+    let ordered = |(a, b): (u8, u8)| if a & b == a { (a, b) } else { (b, a) };
+    let mut found = Vec::new();
+    for tet in KUHN {
+        let ins: Vec<u8> = tet.into_iter().filter(|&c| inside(c)).collect();
+        let outs: Vec<u8> = tet.into_iter().filter(|&c| !inside(c)).collect();
         // Triangles as pairs of corners (the edges their vertices lie on).
-        let (tris, count): ([[(u8, u8); 3]; 2], usize) = match (ins.len(), outs.len()) {
-            (1, 3) => {
-                let a = ins[0];
-                let t = [(a, outs[0]), (a, outs[1]), (a, outs[2])];
-                ([t, t], 1)
-            }
-            (3, 1) => {
-                let d = outs[0];
-                let t = [(ins[0], d), (ins[1], d), (ins[2], d)];
-                ([t, t], 1)
-            }
+        let tris: Vec<[(u8, u8); 3]> = match (ins.len(), outs.len()) {
+            (1, 3) => vec![[(ins[0], outs[0]), (ins[0], outs[1]), (ins[0], outs[2])]],
+            (3, 1) => vec![[(ins[0], outs[0]), (ins[1], outs[0]), (ins[2], outs[0])]],
             (2, 2) => {
                 let (a, b, c, d) = (ins[0], ins[1], outs[0], outs[1]);
-                ([[(a, c), (a, d), (b, d)], [(a, c), (b, d), (b, c)]], 2)
+                vec![[(a, c), (a, d), (b, d)], [(a, c), (b, d), (b, c)]]
             }
             _ => continue,
         };
-        let (from, to) = (centre(ins), centre(outs));
-        let direction = [to[0] - from[0], to[1] - from[1], to[2] - from[2]];
-        for &t in &tris[..count] {
+        let (from, to) = (centre(&ins), centre(&outs));
+        let direction = rbf_core::vec3::sub(to, from);
+        for t in tris {
             let [p, q, r] = t.map(|(a, b)| mid(a, b));
             let n = rbf_core::vec3::cross(rbf_core::vec3::sub(q, p), rbf_core::vec3::sub(r, p));
-            let keys = t.map(|(a, b)| edge(a, b));
-            if rbf_core::vec3::dot(n, direction) >= 0.0 {
-                out.push(keys);
+            let t = t.map(ordered);
+            found.push(if rbf_core::vec3::dot(n, direction) >= 0.0 {
+                t
             } else {
-                out.push([keys[0], keys[2], keys[1]]);
-            }
+                [t[0], t[2], t[1]]
+            });
         }
     }
+    found
+}
+
+/// Appends the triangles of the cell at `cell` (lowest corner) given its eight corner values
+/// (index = corner bits) to `out`, oriented so that their normals point from inside (f > 0) to
+/// outside. A triangle's corners are the numbers `vertex` gives its edges: `vertex(key, f at
+/// the lower end, f at the upper end)`.
+pub(crate) fn cell_triangles(
+    cell: [i64; 3],
+    values: &[f64; 8],
+    out: &mut Vec<[u32; 3]>,
+    mut vertex: impl FnMut(u64, f64, f64) -> u32,
+) {
+    let bits = (0..8).fold(0u8, |b, c| b | (((values[c] > 0.0) as u8) << c));
+    if bits == 0 || bits == u8::MAX {
+        return;
+    }
+    let case = &cube_cases()[bits as usize];
+    for t in &case.triangles[..case.count as usize] {
+        out.push(t.map(|(lo, hi)| {
+            let p = corner(lo);
+            let key = edge_key([cell[0] + p[0], cell[1] + p[1], cell[2] + p[2]], hi & !lo);
+            vertex(key, values[lo as usize], values[hi as usize])
+        }));
+    }
+}
+
+/// One vertex per distinct edge: `edges` may list an edge more than once and `triangles`
+/// index into it; returns each edge once, and the triangles on those numbers.
+pub(crate) fn number_edges(
+    edges: Vec<CrossedEdge>,
+    triangles: Vec<[u32; 3]>,
+) -> (Vec<CrossedEdge>, Vec<[u32; 3]>) {
+    use rayon::prelude::*;
+    // Sort the keys with where they came from (in parallel), then number them, dropping
+    // repeats.
+    let mut order: Vec<(u64, u32)> = edges
+        .iter()
+        .enumerate()
+        .map(|(i, e)| (e.0, i as u32))
+        .collect();
+    order.par_sort_unstable();
+    let mut unique: Vec<CrossedEdge> = Vec::new();
+    let mut vertex_of = vec![0u32; edges.len()];
+    for &(key, i) in &order {
+        if unique.last().is_none_or(|e| e.0 != key) {
+            unique.push(edges[i as usize]);
+        }
+        vertex_of[i as usize] = (unique.len() - 1) as u32;
+    }
+    let triangles = triangles
+        .into_par_iter()
+        .map(|t| t.map(|i| vertex_of[i as usize]))
+        .collect();
+    (unique, triangles)
 }

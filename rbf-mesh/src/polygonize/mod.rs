@@ -161,6 +161,7 @@ pub fn polygonize_grid(
         )));
     }
     let (edges, tris, samples, skipped) = grid::cells(f, &lattice, settings.skip);
+    let (edges, tris) = lattice::number_edges(edges, tris);
     let stats = PolygonizeStats {
         origin: lattice.origin,
         cell_size: lattice.h,

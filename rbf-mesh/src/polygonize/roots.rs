@@ -1,10 +1,9 @@
 //! From crossed lattice edges to a mesh: vertices found on the surface by safeguarded Newton
 //! iteration along each edge, normals from the gradient of f.
 
-use rayon::prelude::*;
 use rbf_core::ScalarField;
 
-use super::lattice::{CrossedEdge, EdgeTriangle, Lattice, edge_of};
+use super::lattice::{CrossedEdge, Lattice, edge_of};
 use super::simplify;
 use crate::{MeshError, TriMesh};
 
@@ -43,34 +42,14 @@ struct Search {
 /// vertex is within about 1e-6 of an edge length of the surface), after at most `iterations`
 /// rounds.
 ///
-/// `edges` lists the three edges of each triangle as [`cell_triangles`] makes them: triangle
-/// t's at 3t, 3t + 1 and 3t + 2.
-///
-/// [`cell_triangles`]: super::lattice::cell_triangles
+/// `unique` lists each crossed edge once; `triangles` are on its indices.
 pub(crate) fn assemble(
     f: &dyn ScalarField<3>,
     lattice: &Lattice,
-    edges: Vec<CrossedEdge>,
-    triangles: Vec<EdgeTriangle>,
+    unique: Vec<CrossedEdge>,
+    triangles: Vec<[u32; 3]>,
     iterations: usize,
 ) -> Result<TriMesh, MeshError> {
-    // One vertex per distinct edge: sort the keys with where they came from (in parallel),
-    // then number them, dropping repeats.
-    let mut order: Vec<(u64, u32)> = edges
-        .iter()
-        .enumerate()
-        .map(|(i, e)| (e.0, i as u32))
-        .collect();
-    order.par_sort_unstable();
-    let mut unique: Vec<CrossedEdge> = Vec::new();
-    let mut vertex_of = vec![0u32; edges.len()];
-    for &(key, i) in &order {
-        if unique.last().is_none_or(|e| e.0 != key) {
-            unique.push(edges[i as usize]);
-        }
-        vertex_of[i as usize] = (unique.len() - 1) as u32;
-    }
-    drop(order);
     let ends: Vec<([f64; 3], [f64; 3])> = unique
         .iter()
         .map(|&(key, _, _)| {
@@ -111,21 +90,6 @@ pub(crate) fn assemble(
         .collect();
     // Collapse first, at the secant points (within a small fraction of a cell of the roots),
     // so that root finding runs on the vertices that stay.
-    // The lattice lists the three edges of each triangle as it makes it (triangle t's at
-    // 3t, 3t + 1, 3t + 2, in some order).
-    let triangles: Vec<[u32; 3]> = triangles
-        .par_iter()
-        .enumerate()
-        .map(|(t, keys)| {
-            keys.map(|k| {
-                (3 * t..3 * t + 3)
-                    .find(|&i| edges.get(i).is_some_and(|e| e.0 == k))
-                    .map_or(0, |i| vertex_of[i])
-            })
-        })
-        .collect();
-    drop(vertex_of);
-    drop(edges);
     let estimates: Vec<[f64; 3]> = searches
         .iter()
         .zip(&ends)
