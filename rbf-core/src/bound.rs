@@ -134,8 +134,13 @@ impl<const D: usize> InterpolantView<'_, f64, D> {
         lo = lo.map(|v| v - margin * side);
         hi = hi.map(|v| v + margin * side);
         let face_points = N.pow(D as u32 - 1);
+        // Face points are evaluated in batches (the vectorized loop), until one is inside.
+        const BATCH: usize = 64;
+        let mut batch = [[0.0; D]; BATCH];
+        let mut values = [0.0; BATCH];
         for _ in 0..8 {
             let mut outside = true;
+            let mut filled = 0;
             'faces: for axis in 0..D {
                 for end in [lo[axis], hi[axis]] {
                     for i in 0..face_points {
@@ -147,9 +152,17 @@ impl<const D: usize> InterpolantView<'_, f64, D> {
                             rest /= N;
                             p[d] = lo[d] + (hi[d] - lo[d]) * t;
                         }
-                        if self.value(&p) > 0.0 {
-                            outside = false;
-                            break 'faces;
+                        batch[filled] = p;
+                        filled += 1;
+                        let last = axis == D - 1 && end == hi[axis] && i == face_points - 1;
+                        if filled == BATCH || last {
+                            // Equal lengths by construction.
+                            let _ = self.values(&batch[..filled], &mut values[..filled]);
+                            if values[..filled].iter().any(|&v| v > 0.0) {
+                                outside = false;
+                                break 'faces;
+                            }
+                            filled = 0;
                         }
                     }
                 }

@@ -38,8 +38,8 @@ pub use files::{
 };
 pub use meshes::{MeshReport, TriMesh};
 pub use polygonize::{
-    BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, polygonize_continuation,
-    polygonize_grid, surface_seeds,
+    BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, SurfaceBox,
+    polygonize_continuation, polygonize_grid, surface_extent, surface_seeds,
 };
 pub use queries::{WindingTree, sample_surface, winding_numbers, winding_numbers_exact};
 pub use volumes::{

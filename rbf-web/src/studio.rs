@@ -5,7 +5,8 @@ use std::path::Path;
 
 use rbf_core::{AnyModel, Model};
 use rbf_mesh::{
-    MeshError, PolygonizeSettings, Resolution, TriMesh, polygonize_continuation, surface_seeds,
+    MeshError, PolygonizeSettings, Resolution, TriMesh, polygonize_continuation, surface_extent,
+    surface_seeds,
 };
 use rbf_sculpt::{Answer, Item, SculptError, Session};
 
@@ -171,10 +172,10 @@ impl Studio {
     /// Re-polygonizes the surface at `cells` lattice cubes across the surface's own box, by
     /// continuation from the boundary items: a first pass at [`SCOUT_CELLS`] across the
     /// constraints' box (which exterior constraints far out make large) finds the surface's
-    /// box; the second meshes that box, grown by one scouting cube; should the surface reach
-    /// its faces, the constraints' box is meshed instead. A surface that cannot be meshed (f
-    /// does not change sign near the items) leaves an empty surface, not an error: the next
-    /// edit may bring it back.
+    /// box (`surface_extent`: sampling only, no mesh); the second meshes that box, grown by
+    /// one scouting cube; should the surface reach its faces, the constraints' box is meshed
+    /// instead. A surface that cannot be meshed (f does not change sign near the items) leaves
+    /// an empty surface, not an error: the next edit may bring it back.
     pub fn remesh(&mut self, cells: usize) -> Result<(), StudioError> {
         let model = self.session.model();
         let view = model.interpolant.view();
@@ -187,8 +188,12 @@ impl Studio {
             };
             polygonize_continuation(&view, &seeds, &settings)
         };
-        let scout = match polygonize(SCOUT_CELLS, None) {
-            Ok((mesh, stats)) => Some((mesh.bounding_box(), stats.cell_size)),
+        let scouting = PolygonizeSettings {
+            resolution: Resolution::Cells(SCOUT_CELLS),
+            ..Default::default()
+        };
+        let scout = match surface_extent(&view, &seeds, &scouting) {
+            Ok((extent, stats)) => Some((extent, stats.cell_size)),
             Err(MeshError::Empty) => None,
             Err(e) => return Err(e.into()),
         };

@@ -35,24 +35,68 @@ struct Block {
 }
 
 /// Lattice points, cells and edges by block.
-#[derive(Default)]
 struct Blocks {
-    index: FastMap<[i64; 3], u32>,
+    index: BlockIndex,
     blocks: Vec<Block>,
     /// The block looked up last, by key: consecutive lookups mostly fall in one block.
     last: Option<([i64; 3], u32)>,
 }
 
+/// Where each block is in `Blocks::blocks`: a dense array over the lattice's blocks when it
+/// is small (at most [`DENSE_BLOCKS`]), else a hash map of the blocks made.
+enum BlockIndex {
+    Dense { side: [i64; 3], at: Vec<u32> },
+    Sparse(FastMap<[i64; 3], u32>),
+}
+
+/// The most blocks indexed densely (16 MB of indices).
+const DENSE_BLOCKS: i64 = 1 << 22;
+
 impl Blocks {
+    fn new(lattice: &Lattice) -> Self {
+        // Lattice points run from 0 to cells[d] along each axis.
+        let side = lattice.cells.map(|c| c / BLOCK + 1);
+        let count = side[0].saturating_mul(side[1]).saturating_mul(side[2]);
+        let index = if count <= DENSE_BLOCKS {
+            BlockIndex::Dense {
+                side,
+                at: vec![u32::MAX; count as usize],
+            }
+        } else {
+            BlockIndex::Sparse(FastMap::default())
+        };
+        Self {
+            index,
+            blocks: Vec::new(),
+            last: None,
+        }
+    }
+
     /// The block holding lattice point (or cell) p, made if new, and p's index in it.
     fn slot(&mut self, p: [i64; 3]) -> (&mut Block, usize) {
+        let (b, i) = self.locate(p);
+        (&mut self.blocks[b as usize], i)
+    }
+
+    /// The number of the block holding lattice point (or cell) p, made if new, and p's index
+    /// in it.
+    fn locate(&mut self, p: [i64; 3]) -> (u32, usize) {
         let key = p.map(|c| c.div_euclid(BLOCK));
         let local = p.map(|c| c.rem_euclid(BLOCK));
         let b = match self.last {
             Some((k, b)) if k == key => b,
             _ => {
                 let next = self.blocks.len() as u32;
-                let b = *self.index.entry(key).or_insert(next);
+                let b = match &mut self.index {
+                    BlockIndex::Dense { side, at } => {
+                        let i = (key[0] + side[0] * (key[1] + side[1] * key[2])) as usize;
+                        if at[i] == u32::MAX {
+                            at[i] = next;
+                        }
+                        at[i]
+                    }
+                    BlockIndex::Sparse(map) => *map.entry(key).or_insert(next),
+                };
                 if b == next {
                     self.blocks.push(Block {
                         values: [f64::NAN; POINTS],
@@ -65,7 +109,22 @@ impl Blocks {
             }
         };
         let i = (local[0] + BLOCK * (local[1] + BLOCK * local[2])) as usize;
-        (&mut self.blocks[b as usize], i)
+        (b, i)
+    }
+
+    /// Where the eight corners of a cell are (by corner bits, as [`Blocks::locate`] gives
+    /// them): one lookup when the cell is not on the upper faces of its block.
+    fn corners(&mut self, cell: [i64; 3]) -> [(u32, usize); 8] {
+        if cell.iter().all(|&c| c.rem_euclid(BLOCK) < BLOCK - 1) {
+            let (b, i) = self.locate(cell);
+            core::array::from_fn(|c| {
+                let step =
+                    (c & 1) as i64 + BLOCK * (((c >> 1) & 1) as i64 + BLOCK * (c >> 2) as i64);
+                (b, i + step as usize)
+            })
+        } else {
+            corners_of(cell).map(|p| self.locate(p))
+        }
     }
 
     /// Marks the cell visited; whether it was not before.
@@ -121,7 +180,7 @@ pub(crate) fn cells(
     lattice: &Lattice,
     seeds: &[[f64; 3]],
 ) -> (Vec<CrossedEdge>, Vec<[u32; 3]>, usize) {
-    let mut blocks = Blocks::default();
+    let mut blocks = Blocks::new(lattice);
     let mut frontier: Vec<[i64; 3]> = Vec::new();
     // Each seed starts the cells around it: a seed on the surface lies in or next to a cell
     // the surface crosses.
@@ -136,16 +195,19 @@ pub(crate) fn cells(
     }
     let (mut edges, mut tris) = (Vec::new(), Vec::new());
     let mut needed: Vec<[i64; 3]> = Vec::new();
+    let mut needed_at: Vec<(u32, usize)> = Vec::new();
     let mut points: Vec<[f64; 3]> = Vec::new();
     let mut found: Vec<f64> = Vec::new();
     while !frontier.is_empty() {
         needed.clear();
+        needed_at.clear();
         for &cell in &frontier {
-            for p in corners_of(cell) {
-                let (block, i) = blocks.slot(p);
-                if block.values[i].is_nan() {
-                    block.values[i] = f64::INFINITY;
-                    needed.push(p);
+            for (c, (b, i)) in blocks.corners(cell).into_iter().enumerate() {
+                let value = &mut blocks.blocks[b as usize].values[i];
+                if value.is_nan() {
+                    *value = f64::INFINITY;
+                    needed.push(corners_of(cell)[c]);
+                    needed_at.push((b, i));
                 }
             }
         }
@@ -155,16 +217,14 @@ pub(crate) fn cells(
         found.resize(points.len(), 0.0);
         // Equal lengths by construction.
         let _ = f.field_values(&points, &mut found);
-        for (&p, &v) in needed.iter().zip(&found) {
-            let (block, i) = blocks.slot(p);
-            block.values[i] = v;
+        for (&(b, i), &v) in needed_at.iter().zip(&found) {
+            blocks.blocks[b as usize].values[i] = v;
         }
         let mut next = Vec::new();
         for cell in frontier {
-            let corners: [f64; 8] = corners_of(cell).map(|p| {
-                let (block, i) = blocks.slot(p);
-                block.values[i]
-            });
+            let corners: [f64; 8] = blocks
+                .corners(cell)
+                .map(|(b, i)| blocks.blocks[b as usize].values[i]);
             cell_triangles(cell, &corners, &mut tris, |key, lo, hi| {
                 blocks.vertex(key, lo, hi, &mut edges)
             });

@@ -203,6 +203,61 @@ pub fn polygonize_continuation(
     ))
 }
 
+/// The box of the surface reached from `seeds` by continuation, as [`polygonize_continuation`]
+/// reaches it: the box of where the surface crosses the lattice's edges, each crossing placed
+/// by linear interpolation between the edge's ends (so within a fraction of a cube of the
+/// surface's own box); and the lattice's stats. Costs the continuation's sampling only (no
+/// root finding, no triangles), so it is a cheap way to find where a surface is before
+/// meshing it finely.
+///
+/// ```
+/// use rbf_core::{InterpolantView, Kernel};
+/// use rbf_mesh::{PolygonizeSettings, Resolution, surface_extent};
+/// // f = 1 − |x|³: the unit sphere.
+/// let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+/// let s = PolygonizeSettings { bounds: Some(([-2.0; 3], [2.0; 3])), resolution: Resolution::Cells(16), ..Default::default() };
+/// let ((lo, hi), stats) = surface_extent(&f, &[[1.0, 0.0, 0.0]], &s).unwrap();
+/// assert_eq!(stats.cell_size, 0.25);
+/// assert!((0..3).all(|d| (lo[d] + 1.0).abs() < 0.05 && (hi[d] - 1.0).abs() < 0.05));
+/// ```
+pub fn surface_extent(
+    f: &dyn ScalarField<3>,
+    seeds: &[[f64; 3]],
+    settings: &PolygonizeSettings,
+) -> Result<(SurfaceBox, PolygonizeStats), MeshError> {
+    let lattice = settings.lattice(f)?;
+    let (edges, _, samples) = continuation::cells(f, &lattice, seeds);
+    if edges.is_empty() {
+        return Err(MeshError::Empty);
+    }
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for &(key, a, b) in &edges {
+        let (p, o) = lattice::edge_of(key);
+        let t = if a != b {
+            (a / (a - b)).clamp(0.0, 1.0)
+        } else {
+            0.5
+        };
+        let at = lattice.point(p);
+        for d in 0..3 {
+            let x = at[d] + t * o[d] as f64 * lattice.h;
+            lo[d] = lo[d].min(x);
+            hi[d] = hi[d].max(x);
+        }
+    }
+    let stats = PolygonizeStats {
+        origin: lattice.origin,
+        cell_size: lattice.h,
+        cells: lattice.cells.map(|c| c as usize),
+        samples,
+        skipped_blocks: 0,
+    };
+    Ok(((lo, hi), stats))
+}
+
+/// A box, as its lowest and highest corners.
+pub type SurfaceBox = ([f64; 3], [f64; 3]);
+
 /// The most cubes [`polygonize_grid`] lays over its box (1625³): its block corners alone then
 /// take half a gigabyte.
 const MAX_GRID_CUBES: f64 = 4.3e9;

@@ -4,7 +4,7 @@
 use rbf_core::{Constraint, FitSettings, Interpolant, InterpolantView, Kernel, Model, fit};
 use rbf_mesh::{
     BlockSkip, PolygonizeSettings, Resolution, TriMesh, polygonize_continuation, polygonize_grid,
-    surface_seeds,
+    surface_extent, surface_seeds,
 };
 
 use rbf_core::shapes::{fibonacci_sphere, tetrahedron_blob};
@@ -238,6 +238,40 @@ fn torus_has_genus_one() {
         fine.positions().len()
     );
     assert_good("torus/continuation/128", &m.interpolant, &fine, 1, 1);
+}
+
+#[test]
+fn surface_extent_is_the_box_of_the_mesh_within_a_fraction_of_a_cube() {
+    // The torus lies in the box [−1.4, 1.4]² × [−0.4, 0.4] (radii 1 and 0.4).
+    let m = model(torus(400));
+    let f = m.interpolant.view();
+    let seeds = surface_seeds(&m);
+    for cells in [12, 40] {
+        let ((lo, hi), stats) = surface_extent(&f, &seeds, &settings(cells)).unwrap();
+        let (mesh, mesh_stats) = polygonize_continuation(&f, &seeds, &settings(cells)).unwrap();
+        assert_eq!(stats.cell_size, mesh_stats.cell_size);
+        let (mlo, mhi) = mesh.bounding_box();
+        // Linear interpolation along an edge is off the root by a fraction of the edge.
+        let near = 0.2 * stats.cell_size;
+        for d in 0..3 {
+            assert!((lo[d] - mlo[d]).abs() < near, "{cells}: {lo:?} {mlo:?}");
+            assert!((hi[d] - mhi[d]).abs() < near, "{cells}: {hi:?} {mhi:?}");
+        }
+        assert!(
+            (hi[2] - 0.4).abs() < 0.05 && (lo[0] + 1.4).abs() < 0.05,
+            "{lo:?} {hi:?}"
+        );
+    }
+    // Nothing to find from a seed far from any surface of a field without one.
+    let empty = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[0.0], -1.0, [0.0; 3]).unwrap();
+    let s = PolygonizeSettings {
+        bounds: Some(([-1.0; 3], [1.0; 3])),
+        ..settings(8)
+    };
+    assert!(matches!(
+        surface_extent(&empty, &[[0.5; 3]], &s),
+        Err(rbf_mesh::MeshError::Empty)
+    ));
 }
 
 #[test]
