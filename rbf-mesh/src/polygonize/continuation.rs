@@ -38,15 +38,15 @@ struct Block {
 struct Blocks {
     index: BlockIndex,
     blocks: Vec<Block>,
-    /// The block looked up last, by key: consecutive lookups mostly fall in one block.
-    last: Option<([i64; 3], u32)>,
+    /// The block looked up last, by packed key: consecutive lookups mostly fall in one block.
+    last: Option<(u64, u32)>,
 }
 
 /// Where each block is in `Blocks::blocks`: a dense array over the lattice's blocks when it
 /// is small (at most [`DENSE_BLOCKS`]), else a hash map of the blocks made.
 enum BlockIndex {
     Dense { side: [i64; 3], at: Vec<u32> },
-    Sparse(FastMap<[i64; 3], u32>),
+    Sparse(FastMap<u64, u32>),
 }
 
 /// The most blocks indexed densely (16 MB of indices).
@@ -80,11 +80,15 @@ impl Blocks {
 
     /// The number of the block holding lattice point (or cell) p, made if new, and p's index
     /// in it.
+    #[inline]
     fn locate(&mut self, p: [i64; 3]) -> (u32, usize) {
         let key = p.map(|c| c.div_euclid(BLOCK));
         let local = p.map(|c| c.rem_euclid(BLOCK));
+        // Lattice indices are below 2²⁰, so a block's three fit in one word (compared in one
+        // instruction, where three stored words read back as one would stall).
+        let packed = ((key[0] as u64) << 42) | ((key[1] as u64) << 21) | key[2] as u64;
         let b = match self.last {
-            Some((k, b)) if k == key => b,
+            Some((k, b)) if k == packed => b,
             _ => {
                 let next = self.blocks.len() as u32;
                 let b = match &mut self.index {
@@ -95,7 +99,7 @@ impl Blocks {
                         }
                         at[i]
                     }
-                    BlockIndex::Sparse(map) => *map.entry(key).or_insert(next),
+                    BlockIndex::Sparse(map) => *map.entry(packed).or_insert(next),
                 };
                 if b == next {
                     self.blocks.push(Block {
@@ -104,7 +108,7 @@ impl Blocks {
                         vertices: Vec::new(),
                     });
                 }
-                self.last = Some((key, b));
+                self.last = Some((packed, b));
                 b
             }
         };

@@ -10,6 +10,7 @@
 //! lattice, no angle under 5°, no two vertices nearly coincident.
 
 mod continuation;
+mod fans;
 mod grid;
 mod lattice;
 mod roots;

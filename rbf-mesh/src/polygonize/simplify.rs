@@ -16,6 +16,8 @@
 //! fraction of the cell is gone, or no allowed collapse remains.
 
 use rayon::prelude::*;
+
+use super::fans::Fans;
 use rbf_core::vec3::{Vec3, cross, dot, norm, sub};
 
 /// Smallest angle, in degrees, that a collapse may create.
@@ -139,14 +141,9 @@ fn collapse_whole(
     let n = positions.len();
     let mut triangles = triangles;
     let mut alive = vec![true; triangles.len()];
-    let mut around: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for (t, tri) in triangles.iter().enumerate() {
-        for &v in tri {
-            around[v as usize].push(t as u32);
-        }
-    }
+    let mut around = Fans::new(n, &triangles);
     let mut merged: Vec<u32> = (0..n as u32).collect();
-    let mut vertices = around.iter().filter(|a| !a.is_empty()).count();
+    let mut vertices = (0..n as u32).filter(|&v| !around.is_empty(v)).count();
     // Collapses, then flips of what collapses cannot reach, then collapses of what flips freed.
     for _ in 0..2 {
         collapse_edges(
@@ -179,7 +176,7 @@ fn collapse_edges(
     target: usize,
     triangles: &mut [[u32; 3]],
     alive: &mut [bool],
-    around: &mut [Vec<u32>],
+    around: &mut Fans,
     merged: &mut [u32],
     vertices: &mut usize,
 ) {
@@ -203,6 +200,7 @@ fn collapse_edges(
         .collect();
     edges.par_sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
     let mut scratch = Scratch::new(positions.len());
+    let mut moved = Vec::new();
     for (l, a, b) in edges {
         if *vertices <= target && l >= short {
             break;
@@ -234,11 +232,11 @@ fn collapse_edges(
                 // The vertex across keeps only live triangles in its list.
                 for w in triangles[t as usize] {
                     if w != from && w != to {
-                        around[w as usize].retain(|&u| u != t);
+                        around.retain(w, |u| u != t);
                     }
                 }
             }
-            let moved = std::mem::take(&mut around[from as usize]);
+            around.take_into(from, &mut moved);
             for &t in &moved {
                 if !alive[t as usize] {
                     continue;
@@ -248,9 +246,9 @@ fn collapse_edges(
                         *v = to;
                     }
                 }
-                around[to as usize].push(t);
+                around.push(to, t);
             }
-            around[to as usize].retain(|&t| alive[t as usize]);
+            around.retain(to, |t| alive[t as usize]);
             merged[from as usize] = to;
             *vertices -= 1;
             break;
@@ -293,11 +291,11 @@ impl Scratch {
 fn for_each_neighbour(
     triangles: &[[u32; 3]],
     alive: &[bool],
-    around: &[Vec<u32>],
+    around: &Fans,
     v: u32,
     mut visit: impl FnMut(u32),
 ) {
-    for &t in &around[v as usize] {
+    for &t in around.of(v) {
         if alive[t as usize] {
             for w in triangles[t as usize] {
                 if w != v {
@@ -313,7 +311,7 @@ fn for_each_neighbour(
 fn mark_neighbours(
     triangles: &[[u32; 3]],
     alive: &[bool],
-    around: &[Vec<u32>],
+    around: &Fans,
     v: u32,
     scratch: &mut Scratch,
 ) -> (u32, usize) {
@@ -332,7 +330,7 @@ fn mark_neighbours(
 fn count_marked_neighbours(
     triangles: &[[u32; 3]],
     alive: &[bool],
-    around: &[Vec<u32>],
+    around: &Fans,
     v: u32,
     m: u32,
     scratch: &mut Scratch,
@@ -364,14 +362,14 @@ fn collapsible(
     cell: f64,
     triangles: &[[u32; 3]],
     alive: &[bool],
-    around: &[Vec<u32>],
+    around: &Fans,
     from: u32,
     to: u32,
     scratch: &mut Scratch,
 ) -> Result<[u32; 2], Refusal> {
     let live = |t: &&u32| alive[**t as usize];
     let (mut shared, mut sharing, mut fan) = ([0u32; 2], 0, 0);
-    for &t in around[from as usize].iter().filter(live) {
+    for &t in around.of(from).iter().filter(live) {
         fan += 1;
         if triangles[t as usize].contains(&to) {
             if sharing < 2 {
@@ -405,7 +403,7 @@ fn collapsible(
     let p = |v: u32| positions[v as usize];
     let normal_of = |t: [u32; 3]| cross(sub(p(t[1]), p(t[0])), sub(p(t[2]), p(t[0])));
     let mut around_normal = [0.0; 3];
-    for &t in around[from as usize].iter().filter(live) {
+    for &t in around.of(from).iter().filter(live) {
         let n = normal_of(triangles[t as usize]);
         for d in 0..3 {
             around_normal[d] += n[d];
@@ -414,14 +412,14 @@ fn collapsible(
     scratch.at_to.clear();
     scratch
         .at_to
-        .extend(around[to as usize].iter().filter(live).map(|&u| {
+        .extend(around.of(to).iter().filter(live).map(|&u| {
             let mut other = triangles[u as usize];
             other.sort_unstable();
             other
         }));
     let tiny = 1e-8 * cell * cell;
     let short = norm(sub(p(from), p(to))) < SHORT * cell;
-    for &t in around[from as usize].iter().filter(live) {
+    for &t in around.of(from).iter().filter(live) {
         if shared.contains(&t) {
             continue;
         }
@@ -462,7 +460,7 @@ fn flip_slivers(
     frozen: &[bool],
     triangles: &mut [[u32; 3]],
     alive: &[bool],
-    around: &mut [Vec<u32>],
+    around: &mut Fans,
 ) {
     let p = |v: u32| positions[v as usize];
     let normal_of = |t: [u32; 3]| cross(sub(p(t[1]), p(t[0])), sub(p(t[2]), p(t[0])));
@@ -490,7 +488,7 @@ fn flip_slivers(
             if frozen[a as usize] || frozen[b as usize] || frozen[c as usize] {
                 continue;
             }
-            let Some(&t2) = around[b as usize].iter().find(|&&t| {
+            let Some(&t2) = around.of(b).iter().find(|&&t| {
                 let o = triangles[t as usize];
                 t as usize != t1
                     && alive[t as usize]
@@ -502,7 +500,8 @@ fn flip_slivers(
             let Some(d) = triangles[t2].into_iter().find(|&w| w != a && w != b) else {
                 continue;
             };
-            let exists = around[c as usize]
+            let exists = around
+                .of(c)
                 .iter()
                 .any(|&t| alive[t as usize] && triangles[t as usize].contains(&d));
             if exists || c == d || frozen[d as usize] {
@@ -524,10 +523,10 @@ fn flip_slivers(
             }
             triangles[t1] = new1;
             triangles[t2] = new2;
-            around[a as usize].retain(|&t| t as usize != t2);
-            around[b as usize].retain(|&t| t as usize != t1);
-            around[c as usize].push(t2 as u32);
-            around[d as usize].push(t1 as u32);
+            around.retain(a, |t| t as usize != t2);
+            around.retain(b, |t| t as usize != t1);
+            around.push(c, t2 as u32);
+            around.push(d, t1 as u32);
             again.push(t2);
             flipped += 1;
         }
