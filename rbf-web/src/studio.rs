@@ -171,11 +171,12 @@ impl Studio {
 
     /// Re-polygonizes the surface at `cells` lattice cubes across the surface's own box, by
     /// continuation from the boundary items: a first pass at [`SCOUT_CELLS`] across the
-    /// constraints' box (which exterior constraints far out make large) finds the surface's
+    /// centres' box (which exterior constraints far out make large) finds the surface's
     /// box (`surface_extent`: sampling only, no mesh); the second meshes that box, grown by
-    /// one scouting cube; should the surface reach its faces, the constraints' box is meshed
-    /// instead. A surface that cannot be meshed (f does not change sign near the items) leaves
-    /// an empty surface, not an error: the next edit may bring it back.
+    /// a tenth of its size (at least a scouting cube); should the surface reach its faces, the
+    /// centres' box (checked by `surface_box`) is meshed instead. A surface that cannot be
+    /// meshed (f does not change sign near the items) leaves an empty surface, not an error:
+    /// the next edit may bring it back.
     pub fn remesh(&mut self, cells: usize) -> Result<(), StudioError> {
         let model = self.session.model();
         let view = model.interpolant.view();
@@ -188,20 +189,38 @@ impl Studio {
             };
             polygonize_continuation(&view, &seeds, &settings)
         };
-        let scouting = PolygonizeSettings {
-            resolution: Resolution::Cells(SCOUT_CELLS),
-            ..Default::default()
+        // Scouting first in the centres' box grown by the usual margin, without the faces'
+        // check of `surface_box` (a sixth of the evaluations of an edit). A surface that the
+        // box cuts has crossings on its faces; one that comes within half a scouting cube of
+        // them is scouted again in the checked box.
+        let scout_in = |bounds: Option<([f64; 3], [f64; 3])>| {
+            let settings = PolygonizeSettings {
+                resolution: Resolution::Cells(SCOUT_CELLS),
+                bounds,
+                ..Default::default()
+            };
+            match surface_extent(&view, &seeds, &settings) {
+                Ok((extent, stats)) => Ok(Some((extent, stats.cell_size))),
+                Err(MeshError::Empty) => Ok(None),
+                Err(e) => Err(e),
+            }
         };
-        let scout = match surface_extent(&view, &seeds, &scouting) {
-            Ok((extent, stats)) => Some((extent, stats.cell_size)),
-            Err(MeshError::Empty) => None,
-            Err(e) => return Err(e.into()),
-        };
+        let centres = grown_centre_box(view.centres(), PolygonizeSettings::default().margin);
+        let mut scout = scout_in(centres)?;
+        if let (Some(((lo, hi), step)), Some((clo, chi))) = (scout, centres)
+            && (0..3).any(|d| lo[d] - clo[d] < 0.5 * step || chi[d] - hi[d] < 0.5 * step)
+        {
+            scout = scout_in(None)?;
+        }
         let Some(((lo, hi), step)) = scout else {
             self.surface = Surface::default();
             return Ok(());
         };
-        let grown = (lo.map(|v| v - step), hi.map(|v| v + step));
+        // Room around the surface: a tenth of its size (so the lattice depends on the
+        // surface, not on how far out the centres reach), and at least a scouting cube.
+        let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+        let room = (side / 10.0).max(step);
+        let grown = (lo.map(|v| v - room), hi.map(|v| v + room));
         let cells = cells.clamp(4, 256);
         let (mut mesh, stats) = polygonize(cells, Some(grown))?;
         // A surface cut by the box comes within half a cube of a face: mesh the large box.
@@ -318,4 +337,19 @@ impl Studio {
         let mesh = self.surface.mesh.as_ref().ok_or(MeshError::Empty)?;
         Ok(rbf_mesh::mesh_bytes(Path::new(name), mesh)?)
     }
+}
+
+/// The box of the centres grown by `margin` times its longest side; `None` without centres or
+/// with all of them at one point.
+fn grown_centre_box(centres: &[[f64; 3]], margin: f64) -> Option<([f64; 3], [f64; 3])> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for c in centres {
+        for d in 0..3 {
+            lo[d] = lo[d].min(c[d]);
+            hi[d] = hi[d].max(c[d]);
+        }
+    }
+    let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    (side > 0.0 && side.is_finite())
+        .then(|| (lo.map(|v| v - margin * side), hi.map(|v| v + margin * side)))
 }
