@@ -1,6 +1,19 @@
-import { launch, startStudio, RBF } from '../tests/harness.mjs';
+// Where the time of a studio edit goes, in headless Chromium: a CPU profile (Chrome DevTools
+// protocol) over 60 edits of the model given, as edit-speed.mjs makes them, summed by function
+// (the engine's Rust functions by name, the page's JavaScript, idle time).
+//
+//   web/build.sh && cargo build --release -p rbf-cli
+//   RBF=target/release/rbf node web/bench/profile-edit.mjs MODEL.json
+
+import { launch, startStudio } from '../tests/harness.mjs';
+
+const model = process.argv[2];
+if (!model) {
+  console.error('usage: node web/bench/profile-edit.mjs MODEL.json');
+  process.exit(2);
+}
 const browser = await launch();
-const { child, url } = await startStudio(['/tmp/sphere250.json']);
+const { child, url } = await startStudio([model]);
 const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
 await page.goto(url);
 await page.waitForFunction(() => window.studio?.ready === true, null, { timeout: 60000 });
