@@ -30,6 +30,10 @@ use crate::ConvertError;
 /// Rounds of pulling the surface back to the mesh after the loop.
 const POLISH_ROUNDS: usize = 2;
 
+/// Refits within a polishing round that add the probes its corrections pushed the surface
+/// across.
+const PROBE_REFITS: usize = 3;
+
 /// Constraint counts, boundary errors and timings of one fit-and-refine iteration.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IterationReport {
@@ -145,8 +149,21 @@ pub fn convert_iterative(
             }
             let mut constraints = model.constraints.clone();
             constraints.extend(extra.into_iter().take(room));
-            let fit = rbf_solve::fit(&constraints, &model.settings)?;
-            if fixes(&fit.interpolant.view(), &probes, &constraints, goal.h).0 > 0 {
+            // Corrections can push the surface across a probe: those probes join as constraints
+            // (as in the loop), a few times, before the round is given up.
+            let mut fit = rbf_solve::fit(&constraints, &model.settings)?;
+            let mut violated = 0;
+            for _ in 0..PROBE_REFITS {
+                let (count, new) = fixes(&fit.interpolant.view(), &probes, &constraints, goal.h);
+                violated = count;
+                let room = settings.max_constraints.saturating_sub(constraints.len());
+                if count == 0 || new.is_empty() || new.len() > room {
+                    break;
+                }
+                constraints.extend(new);
+                fit = rbf_solve::fit(&constraints, &model.settings)?;
+            }
+            if violated > 0 {
                 break;
             }
             let polished = Model {
@@ -156,7 +173,8 @@ pub fn convert_iterative(
                 ..model.clone()
             };
             let (t, s) = measure(mesh, &polished, &probes, goal.h, added, 0.0);
-            if topology.agrees() && !t.agrees() {
+            // A round may trade one topological difference for another, never add one.
+            if t.difference() > topology.difference() {
                 break;
             }
             topology = TopologyReport {

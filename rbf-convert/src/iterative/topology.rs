@@ -48,6 +48,17 @@ impl TopologyReport {
     pub fn agrees(&self) -> bool {
         self.genus == Some(self.goal_genus) && self.components == self.goal_components
     }
+
+    /// How far the surface's topology is from the mesh's: the difference in genus plus the
+    /// difference in components (a surface that is not closed counts as far as can be).
+    pub(crate) fn difference(&self) -> u64 {
+        match self.genus {
+            Some(g) => {
+                g.abs_diff(self.goal_genus) + self.components.abs_diff(self.goal_components) as u64
+            }
+            None => u64::MAX,
+        }
+    }
 }
 
 /// A point the surface must leave on its side: the middle of a thin gap (outside, value < 0) or
@@ -236,5 +247,37 @@ fn surface_topology(
             (r.genus, r.components, Some(mesh))
         }
         Err(_) => (None, 0, None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::TopologyReport;
+
+    fn report(genus: Option<i64>, components: usize) -> TopologyReport {
+        TopologyReport {
+            goal_genus: 2,
+            goal_components: 1,
+            genus,
+            components,
+            cell: 0.1,
+            probes: 0,
+            added: 0,
+            polished: 0,
+            seconds: 0.0,
+        }
+    }
+
+    #[test]
+    fn difference_counts_handles_and_pieces_either_way() {
+        assert_eq!(report(Some(2), 1).difference(), 0);
+        assert!(report(Some(2), 1).agrees());
+        // A handle gained or lost, a piece gained: each counts one.
+        assert_eq!(report(Some(3), 1).difference(), 1);
+        assert_eq!(report(Some(1), 1).difference(), 1);
+        assert_eq!(report(Some(1), 2).difference(), 2);
+        assert_eq!(report(Some(0), 3).difference(), 4);
+        // A surface that did not close is farther than any closed one.
+        assert!(report(None, 1).difference() > report(Some(40), 9).difference());
     }
 }
