@@ -41,9 +41,12 @@ pub(crate) fn collapse(
 ) -> (Vec<u32>, Vec<[u32; 3]>) {
     let n = positions.len();
     // Triangles in the order of their vertices (the lattice's): the checks then walk memory
-    // that is near in the lattice, which takes the collapse about two thirds of the time.
+    // that is near in the lattice, which takes the collapse about two thirds of the time on a
+    // mesh too large for the caches (a small one, as the studio's, only pays for the sort).
     let mut triangles = triangles;
-    triangles.par_sort_unstable_by_key(|t| t[0].min(t[1]).min(t[2]));
+    if n >= 2 * PART {
+        triangles.par_sort_unstable_by_key(|t| t[0].min(t[1]).min(t[2]));
+    }
     let (mut merged, triangles) = collapse_in_parts(positions, triangles, cell, target);
     let (merged_whole, triangles) =
         collapse_whole(positions, &vec![false; n], triangles, cell, target);
