@@ -5,7 +5,7 @@ use pyo3::types::PyDict;
 use rbf_core::{AnyModel, FitReport, Kernel, Model as CoreModel};
 use rbf_far::Evaluator;
 use rbf_mesh::{PolygonizeSettings, Resolution, polygonize_continuation, polygonize_grid};
-use rbf_render::{Camera, Csg, Object, RenderSettings, render, surface_bounds};
+use rbf_render::{Camera, Csg, Object, RenderSettings, render_framed};
 
 use crate::arrays::{Floats, count, mesh_arrays, owned};
 use crate::error::bad;
@@ -301,9 +301,10 @@ impl Model {
         let image = py
             .detach(|| {
                 let views = [Evaluator::with_default_accuracy(view, view.centres())];
-                let (lo, hi) = surface_bounds(&views, &objects, &settings)?;
-                let camera = Camera::orbit(lo, hi, azimuth, elevation, width, height);
-                render(&views, &objects, &camera, &settings).map(|(image, _)| image)
+                render_framed(&views, &objects, &settings, (width, height), |lo, hi| {
+                    Camera::orbit(lo, hi, azimuth, elevation, width, height)
+                })
+                .map(|(image, _, _)| image)
             })
             .map_err(bad)?;
         let (h, w) = (image.height() as usize, image.width() as usize);

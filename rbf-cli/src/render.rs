@@ -6,7 +6,7 @@ use std::time::Instant;
 use clap::Args;
 use rbf_core::Model;
 use rbf_render::{
-    Camera, Csg, Lipschitz, MeshStyle, Object, RenderSettings, render, render_mesh, surface_bounds,
+    Camera, Csg, Lipschitz, MeshStyle, Object, RenderSettings, render_framed, render_mesh,
 };
 
 use crate::accuracy::AccuracyArgs;
@@ -209,15 +209,19 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
             objects.iter_mut().for_each(|o| o.reflectivity = 0.3);
         }
         let bad = |e: rbf_render::RenderError| Failure::new(BAD_INPUT, e.to_string());
-        let (lo, hi) = surface_bounds(&views, &objects, &settings).map_err(bad)?;
-        let camera = camera(args, lo, hi);
         let spinner = crate::common::spinner(
             quiet,
             format!("tracing {} × {} pixels", args.width, args.height),
         );
-        let rendered = render(&views, &objects, &camera, &settings);
+        let rendered = render_framed(
+            &views,
+            &objects,
+            &settings,
+            (args.width, args.height),
+            |lo, hi| camera(args, lo, hi),
+        );
         spinner.finish_and_clear();
-        let (image, stats) = rendered.map_err(bad)?;
+        let (image, stats, _) = rendered.map_err(bad)?;
         if verbose {
             for (input, view) in args.inputs.iter().zip(&views) {
                 eprintln!("{}: {}", input.display(), view.method());

@@ -55,6 +55,6 @@ pub use error::RenderError;
 pub use image::{Image, MAX_SIDE};
 pub use mesh::{MeshStyle, render_mesh};
 pub use plot::{PlotSettings, plot_curve};
-pub use scene::{Object, RenderStats, first_hits, render, surface_bounds};
+pub use scene::{Object, RenderStats, first_hits, render, render_framed, surface_bounds};
 pub use shade::{Light, RenderSettings};
 pub use tracer::Lipschitz;

@@ -111,30 +111,123 @@ pub fn render<F: ScalarField<3>>(
     settings: &RenderSettings,
 ) -> Result<(Image, RenderStats), RenderError> {
     check_size(camera.width, camera.height)?;
+    check_scene(models.len(), objects, settings)?;
+    let start = Instant::now();
+    let fields = fields(models);
+    let tracers = tracers(&fields, objects, settings, camera.width.max(camera.height));
+    let prepare_seconds = start.elapsed().as_secs_f64();
+    render_with(tracers, objects, camera, settings, prepare_seconds)
+}
+
+/// [`render`] with a camera aimed at what it will show: `frame` gets the box [`surface_bounds`]
+/// gives and returns the camera, of `width` × `height` pixels. Where the render's
+/// lattice is the one [`surface_bounds`] uses (at 512 pixels, for example), its cells are
+/// estimated once instead of twice: on a 10⁵-centre model that is 1.5 of 11 seconds.
+///
+/// ```
+/// use rbf_core::{InterpolantView, Kernel};
+/// use rbf_render::{Camera, Csg, Object, RenderSettings, render_framed};
+/// let sphere = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+/// let settings = RenderSettings { samples: 1, ..Default::default() };
+/// let (image, _, camera) = render_framed(&[sphere], &[Object::new(Csg::Model(0), 0)], &settings,
+///     (64, 48), |lo, hi| Camera::orbit(lo, hi, 30.0, 20.0, 64, 48)).unwrap();
+/// assert_eq!((image.width(), image.height(), camera.width), (64, 48, 64));
+/// ```
+pub fn render_framed<F: ScalarField<3>>(
+    models: &[F],
+    objects: &[Object],
+    settings: &RenderSettings,
+    (width, height): (u32, u32),
+    frame: impl FnOnce([f64; 3], [f64; 3]) -> Camera,
+) -> Result<(Image, RenderStats, Camera), RenderError> {
+    check_size(width, height)?;
+    check_scene(models.len(), objects, settings)?;
+    let start = Instant::now();
+    let side = width.max(height);
+    if settings.cells_for(side) != settings.cells_for(0) {
+        let (lo, hi) = surface_bounds(models, objects, settings)?;
+        let camera = frame(lo, hi);
+        let (image, stats) = render(models, objects, &camera, settings)?;
+        return Ok((image, stats, camera));
+    }
+    let fields = fields(models);
+    let tracers = tracers(&fields, objects, settings, side);
+    let (lo, hi) = occupied(&tracers)?;
+    let camera = frame(lo, hi);
+    if settings.cells_for(camera.width.max(camera.height)) != settings.cells_for(side) {
+        // A camera of another size than announced: its own lattice.
+        let (image, stats) = render(models, objects, &camera, settings)?;
+        return Ok((image, stats, camera));
+    }
+    let prepare_seconds = start.elapsed().as_secs_f64();
+    let (image, stats) = render_with(tracers, objects, &camera, settings, prepare_seconds)?;
+    Ok((image, stats, camera))
+}
+
+/// The objects' shapes name existing models, and the samples per pixel are 1 to 16.
+fn check_scene(
+    models: usize,
+    objects: &[Object],
+    settings: &RenderSettings,
+) -> Result<(), RenderError> {
     if objects.is_empty() {
         return Err(RenderError::NoObjects);
     }
     for o in objects {
-        o.shape.validate(models.len())?;
+        o.shape.validate(models)?;
     }
     if !(1..=16).contains(&settings.samples) {
         return Err(RenderError::Samples(settings.samples));
     }
-    let start = Instant::now();
-    let fields = fields(models);
-    let tracers: Vec<Tracer<'_, '_>> = objects
+    Ok(())
+}
+
+/// One tracer per object, with its sampled band, for an image of `side` pixels at most.
+fn tracers<'s, 'm>(
+    fields: &'s [&'m dyn ScalarField<3>],
+    objects: &'s [Object],
+    settings: &RenderSettings,
+    side: u32,
+) -> Vec<Tracer<'s, 'm>> {
+    objects
         .iter()
         .map(|o| {
             Tracer::new(
-                &fields,
+                fields,
                 &o.shape,
-                settings.cells_for(camera.width.max(camera.height)),
+                settings.cells_for(side),
                 settings.lipschitz,
                 true,
             )
         })
-        .collect();
-    let prepare_seconds = start.elapsed().as_secs_f64();
+        .collect()
+}
+
+/// The box of the cells, over all tracers, that can hold surface.
+fn occupied(tracers: &[Tracer<'_, '_>]) -> Result<([f64; 3], [f64; 3]), RenderError> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for t in tracers {
+        if let Some((a, b)) = t.occupied_bounds() {
+            for d in 0..3 {
+                lo[d] = lo[d].min(a[d]);
+                hi[d] = hi[d].max(b[d]);
+            }
+        }
+    }
+    if lo[0] > hi[0] {
+        return Err(RenderError::NoSurface);
+    }
+    Ok((lo, hi))
+}
+
+/// The image of prepared tracers, one per object.
+fn render_with(
+    tracers: Vec<Tracer<'_, '_>>,
+    objects: &[Object],
+    camera: &Camera,
+    settings: &RenderSettings,
+    prepare_seconds: f64,
+) -> Result<(Image, RenderStats), RenderError> {
     let guaranteed = tracers.iter().all(Tracer::guaranteed);
     let band_samples: u64 = tracers.iter().map(|t| t.band_samples() as u64).sum();
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -280,28 +373,23 @@ pub fn surface_bounds<F: ScalarField<3>>(
     if objects.is_empty() {
         return Err(RenderError::NoObjects);
     }
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    let fields = fields(models);
     for o in objects {
         o.shape.validate(models.len())?;
-        let tracer = Tracer::new(
-            &fields,
-            &o.shape,
-            settings.cells_for(0),
-            settings.lipschitz,
-            false,
-        );
-        if let Some((a, b)) = tracer.occupied_bounds() {
-            for d in 0..3 {
-                lo[d] = lo[d].min(a[d]);
-                hi[d] = hi[d].max(b[d]);
-            }
-        }
     }
-    if lo[0] > hi[0] {
-        return Err(RenderError::NoSurface);
-    }
-    Ok((lo, hi))
+    let fields = fields(models);
+    let tracers: Vec<Tracer<'_, '_>> = objects
+        .iter()
+        .map(|o| {
+            Tracer::new(
+                &fields,
+                &o.shape,
+                settings.cells_for(0),
+                settings.lipschitz,
+                false,
+            )
+        })
+        .collect();
+    occupied(&tracers)
 }
 
 /// Where each ray first meets the solid `shape` (distance along the ray), by the same sphere

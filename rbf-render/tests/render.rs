@@ -5,7 +5,7 @@ use proptest::prelude::*;
 use rbf_core::{Constraint, FitSettings, InterpolantView, Kernel, fit};
 use rbf_render::{
     Camera, Csg, Image, Lipschitz, MeshStyle, Object, PlotSettings, Ray, RenderSettings,
-    first_hits, plot_curve, render, render_mesh,
+    first_hits, plot_curve, render, render_framed, render_mesh, surface_bounds,
 };
 
 /// f = R³ − |x − c|³: the sphere of radius R around c.
@@ -452,4 +452,31 @@ fn bad_requests_are_errors() {
     // refuses it.
     assert!(rbf_mesh::TriMesh::new(vec![[0.0; 3]], vec![[0, 1, 2]]).is_err());
     assert!(rbf_mesh::TriMesh::new(vec![[f64::NAN; 3]; 3], vec![[0, 1, 2]]).is_err());
+}
+
+#[test]
+fn render_framed_is_surface_bounds_then_render() {
+    // Two spheres cut from one another: the framed render reuses its tracers' cells for the
+    // box at 512 pixels (the lattice of surface_bounds) and builds them twice at other sizes;
+    // either way, the same camera and the same pixels as the two calls.
+    let (a, b) = ([[0.0; 3]], [[0.6, 0.2, 0.0]]);
+    let models = [sphere(&a, 1.0), sphere(&b, 0.7)];
+    let objects = [Object::new(
+        Csg::Difference(Box::new(Csg::Model(0)), Box::new(Csg::Model(1))),
+        0,
+    )];
+    let settings = RenderSettings {
+        samples: 1,
+        ..Default::default()
+    };
+    for (width, height) in [(512, 24), (64, 48)] {
+        let aim = |lo, hi| Camera::orbit(lo, hi, 30.0, 20.0, width, height);
+        let (lo, hi) = surface_bounds(&models, &objects, &settings).unwrap();
+        let camera = aim(lo, hi);
+        let (image, _) = render(&models, &objects, &camera, &settings).unwrap();
+        let (framed, _, framed_camera) =
+            render_framed(&models, &objects, &settings, (width, height), aim).unwrap();
+        assert_eq!(framed_camera.eye, camera.eye, "{width} × {height}");
+        assert_eq!(framed.to_srgb8(), image.to_srgb8(), "{width} × {height}");
+    }
 }
