@@ -1,10 +1,9 @@
 //! Continuation (Bloomenthal 1988): start at cells near points on the surface and crawl across
 //! the lattice through faces the surface crosses, evaluating f only near the surface.
 
-use rayon::prelude::*;
 use rbf_core::ScalarField;
 
-use super::lattice::{CrossedEdge, Lattice, cell_triangles, edge_of};
+use super::lattice::{CrossedEdge, Lattice, cell_triangles, edge_of, number_edges};
 use crate::meshes::hash::FastMap;
 
 /// The six face neighbours of a cell, and the corners (bits) on the shared face.
@@ -247,30 +246,8 @@ pub(crate) fn cells(
     }
     let samples = blocks.samples();
     drop(blocks);
-    let (edges, tris) = in_lattice_order(edges, tris);
+    // Renumbered in the order of their keys (along x, then y, then z), which the
+    // simplification's parts rely on (see `simplify::collapse_in_parts`).
+    let (edges, tris) = number_edges(edges, tris);
     (edges, tris, samples)
-}
-
-/// The edges renumbered in the order of their keys (along x, then y, then z), which the
-/// simplification's parts rely on (see `simplify::collapse_in_parts`).
-fn in_lattice_order(
-    edges: Vec<CrossedEdge>,
-    tris: Vec<[u32; 3]>,
-) -> (Vec<CrossedEdge>, Vec<[u32; 3]>) {
-    let mut order: Vec<(u64, u32)> = edges
-        .iter()
-        .enumerate()
-        .map(|(i, e)| (e.0, i as u32))
-        .collect();
-    order.par_sort_unstable();
-    let mut new_index = vec![0u32; edges.len()];
-    for (new, &(_, old)) in order.iter().enumerate() {
-        new_index[old as usize] = new as u32;
-    }
-    let edges = order.iter().map(|&(_, old)| edges[old as usize]).collect();
-    let tris = tris
-        .into_par_iter()
-        .map(|t| t.map(|v| new_index[v as usize]))
-        .collect();
-    (edges, tris)
 }

@@ -98,6 +98,18 @@ pub struct PolygonizeStats {
     pub skipped_blocks: usize,
 }
 
+impl PolygonizeStats {
+    fn of(lattice: &Lattice, samples: usize, skipped_blocks: usize) -> Self {
+        Self {
+            origin: lattice.origin,
+            cell_size: lattice.h,
+            cells: lattice.cells.map(|c| c as usize),
+            samples,
+            skipped_blocks,
+        }
+    }
+}
+
 impl PolygonizeSettings {
     fn lattice(&self, f: &dyn ScalarField<3>) -> Result<Lattice, MeshError> {
         let (lo, hi) = match self.bounds {
@@ -163,13 +175,7 @@ pub fn polygonize_grid(
     }
     let (edges, tris, samples, skipped) = grid::cells(f, &lattice, settings.skip);
     let (edges, tris) = lattice::number_edges(edges, tris);
-    let stats = PolygonizeStats {
-        origin: lattice.origin,
-        cell_size: lattice.h,
-        cells: lattice.cells.map(|c| c as usize),
-        samples,
-        skipped_blocks: skipped,
-    };
+    let stats = PolygonizeStats::of(&lattice, samples, skipped);
     if tris.is_empty() {
         return Err(MeshError::Invalid("no surface inside the box".into()));
     }
@@ -188,13 +194,7 @@ pub fn polygonize_continuation(
 ) -> Result<(TriMesh, PolygonizeStats), MeshError> {
     let lattice = settings.lattice(f)?;
     let (edges, tris, samples) = continuation::cells(f, &lattice, seeds);
-    let stats = PolygonizeStats {
-        origin: lattice.origin,
-        cell_size: lattice.h,
-        cells: lattice.cells.map(|c| c as usize),
-        samples,
-        skipped_blocks: 0,
-    };
+    let stats = PolygonizeStats::of(&lattice, samples, 0);
     if tris.is_empty() {
         return Err(MeshError::Invalid("no surface found near the seeds".into()));
     }
@@ -246,13 +246,7 @@ pub fn surface_extent(
             hi[d] = hi[d].max(x);
         }
     }
-    let stats = PolygonizeStats {
-        origin: lattice.origin,
-        cell_size: lattice.h,
-        cells: lattice.cells.map(|c| c as usize),
-        samples,
-        skipped_blocks: 0,
-    };
+    let stats = PolygonizeStats::of(&lattice, samples, 0);
     Ok(((lo, hi), stats))
 }
 
