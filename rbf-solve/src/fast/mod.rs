@@ -1,5 +1,5 @@
 //! The iterative solver for large systems: flexible GMRES on the whole saddle-point system,
-//! preconditioned by two-level restricted additive Schwarz, with the kernel products on every
+//! preconditioned by multilevel restricted additive Schwarz, with the kernel products on every
 //! core. Memory grows linearly with the rows; convergence is judged by the true residual.
 
 mod gmres;
@@ -364,8 +364,16 @@ pub fn check_iterative_fits(
 ) -> Result<(), FitError> {
     let s = &options.schwarz;
     let ext = (s.extended.max(s.inner) + dim + 1) as u64;
-    // Median splits halve a node until it holds at most `inner` rows: a power of two of leaves.
-    let leaves = rows.div_ceil(s.inner.max(1)).next_power_of_two() as u64;
+    // Median splits halve a node until it holds at most `inner` rows: a power of two of leaves,
+    // on every level (one row in 24 of the level above) down to the one factored whole.
+    let (mut leaves, mut level_rows, mut depth) = (0u64, rows, 1);
+    loop {
+        leaves += level_rows.div_ceil(s.inner.max(1)).next_power_of_two() as u64;
+        if level_rows / 24 <= 2 * s.coarse || depth + 2 > s.levels {
+            break;
+        }
+        (level_rows, depth) = (level_rows / 24, depth + 1);
+    }
     let coarse = (s.coarse.min(rows) + dim + 1) as u64;
     // Each factored subdomain (one packed LU) and a tenth more for the allocator and the
     // matrices being factored (measured: 1.28 GB peak for the whole `rbf fit` at 10⁵ rows with

@@ -67,6 +67,7 @@ fn tight() -> IterativeOptions {
             inner: 64,
             extended: 160,
             coarse: 300,
+            ..SchwarzSettings::default()
         },
         ..Default::default()
     }
@@ -155,6 +156,63 @@ fn reports_progress_and_meets_every_row_by_direct_sums() {
     for (p, h) in system.points().iter().zip(system.values()) {
         assert!((f.value(p) - h).abs() <= 1e-7 * hmax);
     }
+}
+
+/// Iterations an iterative solve of `cs` to 1e-9 takes with these preconditioner settings (every
+/// row then checked by direct sums), or `None` if it does not get there in 60.
+fn iterations_with(cs: &[Constraint<3>], schwarz: SchwarzSettings) -> Option<usize> {
+    let settings = FitSettings::default();
+    let system = System::new(cs, &settings).unwrap();
+    let options = IterativeOptions {
+        tolerance: Some(1e-9),
+        max_iterations: 60,
+        allow_unconverged: true,
+        schwarz,
+        ..Default::default()
+    };
+    let fit = solve_iterative(&system, &settings, &options, |_| {}).unwrap();
+    let hmax = system.values().iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    let met = system
+        .points()
+        .iter()
+        .zip(system.values())
+        .all(|(p, h)| (fit.interpolant.value(p) - h).abs() <= 1e-9 * hmax);
+    met.then_some(fit.report.iterations)
+}
+
+#[test]
+fn a_nested_coarse_level_keeps_the_iterations_of_one_factored_whole() {
+    // 12 000 rows. Two levels with one row in 24 factored whole (500 rows), as the default
+    // settings have up to 10⁵ rows; two levels with only 20 coarse rows, as 4096 would be for
+    // 10⁶; and three levels: the 500 rows are themselves split into subdomains over 20 coarse
+    // rows, and only those 20 are factored whole.
+    let cs = bumpy(6000, 13);
+    let whole = SchwarzSettings {
+        inner: 64,
+        extended: 160,
+        coarse: 500,
+        levels: 2,
+    };
+    let starved = SchwarzSettings {
+        coarse: 20,
+        ..whole
+    };
+    let nested = SchwarzSettings {
+        levels: 3,
+        ..starved
+    };
+    let whole = iterations_with(&cs, whole).expect("a coarse level factored whole converges");
+    let nested = iterations_with(&cs, nested).expect("the nested coarse level converges");
+    assert!(
+        nested <= whole + 4,
+        "{nested} iterations nested, {whole} whole"
+    );
+    // Starved, the solve stalls (measured: still above the right-hand side after 60).
+    let starved = iterations_with(&cs, starved);
+    assert!(
+        starved.is_none_or(|s| s >= 2 * nested),
+        "{starved:?} iterations starved, {nested} nested"
+    );
 }
 
 #[test]
