@@ -17,7 +17,7 @@
 //! 10⁵ rows of the peers' surface problem with the coarse level capped at 400 rows (one in 250):
 //! 30 iterations with two levels, 11 with three, 8 with 4096 rows factored whole; at 2·10⁵ rows
 //! with the defaults, 19 iterations (69 s) with two levels, 10 (43 s) with three; on 2·10⁵ rows
-//! of the peers' cube problem (scattered values in a volume), 28 iterations (88 s) with three
+//! of the peers' cube problem (scattered values in a volume), 13 iterations (50 s) with three
 //! levels where two had not converged after 40. Measured and rejected: subsets of one row in 8
 //! or 12 (as Polatory's one in 8): 6 and 9 iterations on the surface, but no convergence within
 //! 40 on the cube.
@@ -183,6 +183,11 @@ fn orthonormal_affine_basis<const D: usize>(points: &[[f64; D]]) -> Vec<Vec<f64>
     basis
 }
 
+/// Cycles of a nested level per solve, each on the residual the ones before left at its rows
+/// (measured on 2·10⁵ rows of the peers' cube problem: 28 iterations with one, 13 with two, 12
+/// with three; the surface problem 10 with each).
+const NESTED_CYCLES: usize = 2;
+
 /// Products above this many source–target pairs between two levels go through a far field.
 const FAR_PAIRS: usize = 1_000_000_000;
 
@@ -207,15 +212,16 @@ pub(crate) struct Schwarz<const D: usize> {
 enum Coarse<const D: usize> {
     /// A spread subset of the level's rows, few enough to factor whole, with the affine part.
     Direct(Local),
-    /// Too many rows to factor whole: another level of the same preconditioner on them.
-    Nested(Box<Schwarz<D>>),
+    /// Too many rows to factor whole: another level of the same preconditioner on them, and
+    /// the product of its rows' weights at its rows.
+    Nested(Box<Schwarz<D>>, Transfer<D>),
 }
 
 impl<const D: usize> Coarse<D> {
     fn rows(&self) -> &[usize] {
         match self {
             Coarse::Direct(local) => &local.rows,
-            Coarse::Nested(level) => &level.rows,
+            Coarse::Nested(level, _) => &level.rows,
         }
     }
 
@@ -237,7 +243,17 @@ impl<const D: usize> Coarse<D> {
                 z[n..].copy_from_slice(&y[local.keep..]);
                 z
             }
-            Coarse::Nested(level) => level.apply(system, h, g),
+            Coarse::Nested(level, product) => {
+                // Cycles of the level, each on what the ones before left.
+                let mut z = level.apply(system, h, g);
+                for _ in 1..NESTED_CYCLES {
+                    let f = product.values(system, &z);
+                    let r = leftover(system, &level.rows, &f, h, &z);
+                    let dz = level.apply(system, &r, &moments_left(system, &level.rows, g, &z));
+                    z.iter_mut().zip(&dz).for_each(|(a, b)| *a += b);
+                }
+                z
+            }
         }
     }
 }
@@ -334,7 +350,11 @@ impl<const D: usize> Schwarz<D> {
                 .into_iter()
                 .map(|i| rows[i])
                 .collect();
-            Coarse::Nested(Box::new(Self::level(system, subset, settings, depth + 1)))
+            let product = Transfer::new(system, &subset, &subset);
+            Coarse::Nested(
+                Box::new(Self::level(system, subset, settings, depth + 1)),
+                product,
+            )
         } else {
             let wanted = settings.coarse.min((m / 24).max(2048)).max(D + 1);
             let subset: Vec<usize> = spread_subset(&points, wanted)
@@ -371,12 +391,8 @@ impl<const D: usize> Schwarz<D> {
         let coarse_rows = self.coarse.rows();
         // Pre-step on the coarse level: the global part first, so that the subdomains solve
         // only what it leaves.
-        let mut h_fine = vec![0.0; n];
         let mut z = self.coarse.solve(system, h, g);
-        let fy = self.down.values(system, &z);
-        for (&i, f) in self.rows.iter().zip(&fy) {
-            h_fine[i] = h[i] - f - system.normalized_smoothing(i) * z[i];
-        }
+        let h_fine = leftover(system, &self.rows, &self.down.values(system, &z), h, &z);
         let parts: Vec<Vec<f64>> = self
             .fine
             .par_iter()
@@ -394,19 +410,8 @@ impl<const D: usize> Schwarz<D> {
             return z;
         }
         // What the weights so far leave at the coarse rows, and of the moment conditions.
-        let fz = self.up.values(system, &z);
-        let mut hc = vec![0.0; n];
-        for (&i, f) in coarse_rows.iter().zip(&fz) {
-            hc[i] = h[i] - f - system.normalized_smoothing(i) * z[i];
-        }
-        let points = system.normalized_points();
-        let mut gc = g.to_vec();
-        for &i in &self.rows {
-            gc[0] -= z[i];
-            for d in 0..D {
-                gc[d + 1] -= z[i] * points[i][d];
-            }
-        }
+        let hc = leftover(system, coarse_rows, &self.up.values(system, &z), h, &z);
+        let gc = moments_left(system, &self.rows, g, &z);
         let y = self.coarse.solve(system, &hc, &gc);
         for &i in coarse_rows {
             z[i] += y[i];
@@ -414,6 +419,40 @@ impl<const D: usize> Schwarz<D> {
         z[n..].iter_mut().zip(&y[n..]).for_each(|(a, b)| *a += b);
         z
     }
+}
+
+/// What weights `z` leave of `h` at `rows`, given f there (`f`, in the order of `rows`): h − f −
+/// λz at those rows, zero elsewhere.
+fn leftover<const D: usize>(
+    system: &System<D>,
+    rows: &[usize],
+    f: &[f64],
+    h: &[f64],
+    z: &[f64],
+) -> Vec<f64> {
+    let mut r = vec![0.0; h.len()];
+    for (&i, fi) in rows.iter().zip(f) {
+        r[i] = h[i] - fi - system.normalized_smoothing(i) * z[i];
+    }
+    r
+}
+
+/// What weights `z` on `rows` leave of the moment conditions' right-hand side `g`: g − Pᵀz.
+fn moments_left<const D: usize>(
+    system: &System<D>,
+    rows: &[usize],
+    g: &[f64],
+    z: &[f64],
+) -> Vec<f64> {
+    let points = system.normalized_points();
+    let mut left = g.to_vec();
+    for &i in rows {
+        left[0] -= z[i];
+        for d in 0..D {
+            left[d + 1] -= z[i] * points[i][d];
+        }
+    }
+    left
 }
 
 fn empty_local<const D: usize>() -> Local {
