@@ -32,6 +32,19 @@ fn the_surface_buffers_are_consistent_and_closed() {
     let check = s.mesh.as_ref().unwrap().check();
     assert!(check.is_watertight(), "{check:?}");
     assert_eq!(check.genus, Some(0));
+    // Every vertex on the surface (|f| / |∇f|, the distance to first order) within a
+    // thousandth of a lattice cube.
+    let (lo, hi) = bounds(&studio);
+    let cube = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f32::max) as f64 / FINE_CELLS as f64;
+    let f = studio.model().interpolant;
+    for p in s.positions.chunks(3) {
+        let (v, g) = f.value_and_gradient(&[p[0] as f64, p[1] as f64, p[2] as f64]);
+        let distance = v.abs() / g.iter().map(|c| c * c).sum::<f64>().sqrt();
+        assert!(
+            distance < 1e-3 * cube,
+            "{distance:e} from the surface, cube {cube:e}"
+        );
+    }
 }
 
 #[test]
