@@ -233,7 +233,8 @@ fn calibration_sample<const D: usize>(points: &[[f64; D]]) -> Vec<[f64; D]> {
         .collect()
 }
 
-fn affine<const D: usize>(c: &[f64], p: &[f64; D]) -> f64 {
+/// The affine part at p: c₀ + Σ c_{d+1} p_d.
+pub(crate) fn affine<const D: usize>(c: &[f64], p: &[f64; D]) -> f64 {
     c[0] + (0..D).map(|d| c[d + 1] * p[d]).sum::<f64>()
 }
 

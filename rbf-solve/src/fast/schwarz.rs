@@ -25,6 +25,7 @@
 use faer::{Mat, Par};
 
 use super::packed_lu::PackedLu;
+use super::products::affine;
 use rayon::prelude::*;
 use rbf_core::{InterpolantView, System};
 
@@ -262,27 +263,35 @@ impl<const D: usize> Coarse<D> {
 /// are few pairs, else through a far field over the sources built once.
 struct Transfer<const D: usize> {
     sources: Vec<usize>,
-    source_points: Vec<[f64; D]>,
+    sums: Sums<D>,
     target_points: Vec<[f64; D]>,
-    far: Option<FarField<D>>,
+}
+
+/// How a [`Transfer`] sums its sources.
+enum Sums<const D: usize> {
+    /// Directly, over these source points.
+    Direct(Vec<[f64; D]>),
+    /// Through this far field (which keeps the source points itself).
+    Far(FarField<D>),
 }
 
 impl<const D: usize> Transfer<D> {
     fn new(system: &System<D>, sources: &[usize], targets: &[usize]) -> Self {
         let points = system.normalized_points();
         let source_points: Vec<[f64; D]> = sources.iter().map(|&i| points[i]).collect();
-        let far = (sources.len().saturating_mul(targets.len()) > FAR_PAIRS).then(|| {
+        let sums = if sources.len().saturating_mul(targets.len()) > FAR_PAIRS {
             let settings = FarFieldSettings {
                 order: TRANSFER_ORDER,
                 ..FarFieldSettings::default()
             };
-            FarField::new(system.kernel(), &source_points, &settings)
-        });
+            Sums::Far(FarField::new(system.kernel(), &source_points, &settings))
+        } else {
+            Sums::Direct(source_points)
+        };
         Self {
             sources: sources.to_vec(),
-            source_points,
+            sums,
             target_points: targets.iter().map(|&i| points[i]).collect(),
-            far,
         }
     }
 
@@ -291,19 +300,24 @@ impl<const D: usize> Transfer<D> {
     fn values(&self, system: &System<D>, z: &[f64]) -> Vec<f64> {
         let n = system.rows();
         let weights: Vec<f64> = self.sources.iter().map(|&i| z[i]).collect();
-        let linear: [f64; D] = core::array::from_fn(|d| z[n + 1 + d]);
         let mut out = vec![0.0; self.target_points.len()];
-        if let Some(field) = &self.far {
-            if let Ok(charges) = field.charges(&weights) {
-                let _ = field.values(&charges, &self.target_points, &mut out);
+        match &self.sums {
+            Sums::Far(field) => {
+                if let Ok(charges) = field.charges(&weights) {
+                    let _ = field.values(&charges, &self.target_points, &mut out);
+                }
+                for (o, p) in out.iter_mut().zip(&self.target_points) {
+                    *o += affine(&z[n..], p);
+                }
             }
-            for (o, p) in out.iter_mut().zip(&self.target_points) {
-                *o += z[n] + (0..D).map(|d| linear[d] * p[d]).sum::<f64>();
+            Sums::Direct(source_points) => {
+                let linear: [f64; D] = core::array::from_fn(|d| z[n + 1 + d]);
+                let view =
+                    InterpolantView::new(system.kernel(), source_points, &weights, z[n], linear);
+                if let Ok(view) = view {
+                    let _ = view.par_values(&self.target_points, &mut out);
+                }
             }
-        } else if let Ok(view) =
-            InterpolantView::new(system.kernel(), &self.source_points, &weights, z[n], linear)
-        {
-            let _ = view.par_values(&self.target_points, &mut out);
         }
         out
     }
