@@ -71,7 +71,9 @@ pub(crate) fn fgmres(
     let mut target = match accept(&x, &r, iterations, initial) {
         Acceptance::Done => return end(x, iterations, true),
         Acceptance::GiveUp => return end(x, iterations, false),
-        Acceptance::Continue { target } | Acceptance::Restart { target } => target,
+        Acceptance::Continue { target }
+        | Acceptance::Restart { target }
+        | Acceptance::Remeasure { target } => target,
     };
     'cycles: loop {
         let beta = norm(&r);
@@ -152,6 +154,13 @@ pub(crate) fn fgmres(
                     r = rj;
                     continue 'cycles;
                 }
+                Acceptance::Remeasure { target: t } => {
+                    (target, trust) = (t, 1.0);
+                    apply(&xj, &mut scratch, None);
+                    r = b.par_iter().zip(&scratch).map(|(bi, ax)| bi - ax).collect();
+                    x = xj;
+                    continue 'cycles;
+                }
             }
             if last {
                 // Restart from the cycle's last iterate, whose true residual was just measured.
@@ -215,6 +224,12 @@ pub(crate) enum Acceptance {
     /// recurrence has run ahead of the truth (inexact products took it off course), and only a
     /// new Krylov space built on the true residual can close the gap.
     Restart {
+        target: f64,
+    },
+    /// The products changed (a far field gave way to a more accurate one): start a new cycle
+    /// from this iterate and its residual measured again with the new products, then as
+    /// `Continue`.
+    Remeasure {
         target: f64,
     },
     /// Stop: the iterate will not get better (rounding has the last word).

@@ -38,6 +38,13 @@ pub struct SchwarzSettings {
     pub inner: usize,
     /// Rows a subdomain solves for: its leaf and the nearest rows around it.
     pub extended: usize,
+    /// The same on a level whose coarse level is nested, solved only approximately: the
+    /// subdomains must leave less to it. On the peers' problems, 512 / 768: 2·10⁵ rows of the
+    /// surface 10 / 6 iterations (46 / 37 s), of the cube 13 / 6 (51 / 34 s); 5·10⁵ rows of the
+    /// surface 5.5e-3 / 8.3e-7 of max|h| after five iterations; 10⁶ rows stalled near 5e-4 /
+    /// converged to 4.4e-6 in eight. Below (10⁵ rows, coarse level factored whole) 768 costs
+    /// more than the iteration it saves (13.1 / 14.1 s).
+    pub extended_nested: usize,
     /// Most rows of the coarse level factored whole: it takes one row in 24, but at least 2048
     /// (or all).
     pub coarse: usize,
@@ -52,111 +59,146 @@ impl Default for SchwarzSettings {
         Self {
             inner: 256,
             extended: 512,
+            extended_nested: 768,
             coarse: 4096,
             levels: 4,
         }
     }
 }
 
-/// A small dense saddle-point system on some rows of the whole one, factored.
+/// The coarse level factored whole: a small dense saddle-point system on some rows of the whole
+/// one.
 struct Local {
-    /// Rows of the whole system; the first `keep` are those whose weights are kept.
+    /// Rows of the whole system.
     rows: Vec<usize>,
-    keep: usize,
-    /// Polynomial columns of the local system.
+    /// Polynomial columns of the local system: 1, x.
     poly: usize,
-    /// Local weights times this are weights of the whole system.
-    weight_scale: f64,
     lu: PackedLu,
 }
 
 impl Local {
-    /// Factors the rows' system. With `rescale`, the rows are moved to their box's centre and
-    /// scaled to unit size (their weights scale back by s^-β), and the polynomial columns are
-    /// an orthonormal basis of what the rows span of (1, x): a flat patch gets fewer columns.
-    /// Without, the columns are (1, x) in the system's coordinates.
-    fn new<const D: usize>(
-        system: &System<D>,
-        rows: Vec<usize>,
-        keep: usize,
-        rescale: bool,
-    ) -> Option<Self> {
-        let all = system.normalized_points();
-        let (lo, hi) = bounds(all, &rows);
-        let (centre, s) = if rescale {
-            let half = (0..D).map(|d| 0.5 * (hi[d] - lo[d])).fold(0.0, f64::max);
-            let c: [f64; D] = core::array::from_fn(|d| 0.5 * (lo[d] + hi[d]));
-            (c, if half > 0.0 { half } else { 1.0 })
-        } else {
-            ([0.0; D], 1.0)
-        };
-        let points: Vec<[f64; D]> = rows
-            .iter()
-            .map(|&i| core::array::from_fn(|d| (all[i][d] - centre[d]) / s))
-            .collect();
+    /// Factors the rows' system (in the system's coordinates, with the columns 1, x), on every
+    /// core.
+    fn new<const D: usize>(system: &System<D>, rows: Vec<usize>) -> Option<Self> {
+        // Unscaled, the weights are the whole system's.
+        let (matrix, poly, _) = local_matrix(system, &rows, false);
+        let lu = PackedLu::new(matrix, faer::get_global_parallelism());
         let m = rows.len();
-        let basis = if rescale {
-            orthonormal_affine_basis(&points)
-        } else {
-            (0..=D)
-                .map(|c| {
-                    points
-                        .iter()
-                        .map(|p| if c == 0 { 1.0 } else { p[c - 1] })
-                        .collect()
-                })
-                .collect()
-        };
-        let q = basis.len();
-        let beta = system.kernel().scale_exponent();
-        let scale_beta = s.powi(beta);
-        let kernel = system.kernel();
-        let matrix = Mat::<f64>::from_fn(m + q, m + q, |i, j| match (i < m, j < m) {
-            (true, true) => {
-                let r2: f64 = (0..D).map(|d| (points[i][d] - points[j][d]).powi(2)).sum();
-                let mut v = kernel.phi(r2.sqrt());
-                if i == j {
-                    v += system.normalized_smoothing(rows[i]) / scale_beta;
-                }
-                v
-            }
-            (true, false) => basis[j - m][i],
-            (false, true) => basis[i - m][j],
-            (false, false) => 0.0,
-        });
-        // Subdomains (rescaled) are factored many at once, one per core; the coarse level alone,
-        // on every core.
-        let par = if rescale {
-            Par::Seq
-        } else {
-            faer::get_global_parallelism()
-        };
-        let lu = PackedLu::new(matrix, par);
-        let local = Self {
-            rows,
-            keep,
-            poly: q,
-            weight_scale: 1.0 / scale_beta,
-            lu,
-        };
-        // A singular block shows as non-finite numbers; such a subdomain is left out.
-        let probe = local.solve(&vec![1.0; m], &vec![0.0; q]);
+        let local = Self { rows, poly, lu };
+        // A singular block shows as non-finite numbers.
+        let probe = local.solve(&vec![1.0; m], &vec![0.0; poly]);
         probe.iter().all(|v| v.is_finite()).then_some(local)
     }
 
     /// Solves for right-hand side (h on the rows, g on the polynomial columns); returns the
-    /// kept weights (scaled back) followed by the polynomial coefficients.
+    /// weights followed by the polynomial coefficients.
     fn solve(&self, h: &[f64], g: &[f64]) -> Vec<f64> {
         let m = self.rows.len();
         let mut rhs =
             Mat::<f64>::from_fn(m + self.poly, 1, |i, _| if i < m { h[i] } else { g[i - m] });
         self.lu.solve_in_place(rhs.as_mut());
-        let mut out: Vec<f64> = (0..self.keep)
-            .map(|i| rhs[(i, 0)] * self.weight_scale)
-            .collect();
-        out.extend((0..self.poly).map(|i| rhs[(m + i, 0)]));
-        out
+        rhs.col(0).iter().copied().collect()
     }
+}
+
+/// A subdomain of a level: its leaf's rows and the nearest rows around them, and the map from a
+/// residual at those rows to the weights of the leaf's rows alone (the rows of the local
+/// system's inverse that they keep, the moment conditions' right-hand side zero). Kept as that
+/// map, keep × rows numbers, instead of an LU factorization of rows²: at 256 kept of 768 rows,
+/// a third of the memory, and one product to apply.
+struct Subdomain {
+    /// Rows of the whole system; the first `keep` are the leaf's.
+    rows: Vec<usize>,
+    keep: usize,
+    /// Row-major, `keep` × `rows.len()`, scaled to the whole system's weights.
+    map: Vec<f64>,
+}
+
+impl Subdomain {
+    /// Factors the rows' system (moved to their box's centre, scaled to unit size, polynomial
+    /// columns an orthonormal basis of what they span of (1, x)) and keeps the map; `None` for a
+    /// singular system (it shows as non-finite numbers).
+    fn new<const D: usize>(system: &System<D>, rows: Vec<usize>, keep: usize) -> Option<Self> {
+        let (matrix, poly, weight_scale) = local_matrix(system, &rows, true);
+        let m = rows.len();
+        // Subdomains are factored many at once, one per core.
+        let lu = PackedLu::new(matrix, Par::Seq);
+        let mut columns = Mat::<f64>::from_fn(m + poly, keep, |i, j| f64::from(u8::from(i == j)));
+        lu.solve_in_place(columns.as_mut());
+        // The local system is symmetric, and so is its inverse: its kept rows are the columns
+        // just solved for.
+        let mut map = Vec::with_capacity(keep * m);
+        for j in 0..keep {
+            map.extend(columns.col(j).iter().take(m).map(|v| v * weight_scale));
+        }
+        map.iter()
+            .all(|v| v.is_finite())
+            .then_some(Self { rows, keep, map })
+    }
+
+    /// The kept rows' weights for the residual `h` (whole-system length, read at the rows).
+    fn solve(&self, h: &[f64]) -> Vec<f64> {
+        let local: Vec<f64> = self.rows.iter().map(|&i| h[i]).collect();
+        self.map
+            .chunks_exact(self.rows.len())
+            .map(|row| row.iter().zip(&local).map(|(a, b)| a * b).sum())
+            .collect()
+    }
+}
+
+/// The saddle-point matrix [Φ + Λ, P; Pᵀ, 0] of some rows, its number of polynomial columns, and
+/// the factor from its weights to the whole system's. With `rescale`, the rows are moved to
+/// their box's centre and scaled to unit size (their weights scale back by s^-β), and the
+/// polynomial columns are an orthonormal basis of what the rows span of (1, x): a flat patch
+/// gets fewer columns. Without, the columns are (1, x) in the system's coordinates.
+fn local_matrix<const D: usize>(
+    system: &System<D>,
+    rows: &[usize],
+    rescale: bool,
+) -> (Mat<f64>, usize, f64) {
+    let all = system.normalized_points();
+    let (lo, hi) = bounds(all, rows);
+    let (centre, s) = if rescale {
+        let half = (0..D).map(|d| 0.5 * (hi[d] - lo[d])).fold(0.0, f64::max);
+        let c: [f64; D] = core::array::from_fn(|d| 0.5 * (lo[d] + hi[d]));
+        (c, if half > 0.0 { half } else { 1.0 })
+    } else {
+        ([0.0; D], 1.0)
+    };
+    let points: Vec<[f64; D]> = rows
+        .iter()
+        .map(|&i| core::array::from_fn(|d| (all[i][d] - centre[d]) / s))
+        .collect();
+    let m = rows.len();
+    let basis = if rescale {
+        orthonormal_affine_basis(&points)
+    } else {
+        (0..=D)
+            .map(|c| {
+                points
+                    .iter()
+                    .map(|p| if c == 0 { 1.0 } else { p[c - 1] })
+                    .collect()
+            })
+            .collect()
+    };
+    let q = basis.len();
+    let scale_beta = s.powi(system.kernel().scale_exponent());
+    let kernel = system.kernel();
+    let matrix = Mat::<f64>::from_fn(m + q, m + q, |i, j| match (i < m, j < m) {
+        (true, true) => {
+            let r2: f64 = (0..D).map(|d| (points[i][d] - points[j][d]).powi(2)).sum();
+            let mut v = kernel.phi(r2.sqrt());
+            if i == j {
+                v += system.normalized_smoothing(rows[i]) / scale_beta;
+            }
+            v
+        }
+        (true, false) => basis[j - m][i],
+        (false, true) => basis[i - m][j],
+        (false, false) => 0.0,
+    });
+    (matrix, q, 1.0 / scale_beta)
 }
 
 /// Gram–Schmidt (twice) on the columns 1, x₁ … x_D over the points, dropping a column that the
@@ -201,7 +243,7 @@ const TRANSFER_ORDER: usize = 10;
 pub(crate) struct Schwarz<const D: usize> {
     /// This level's rows of the whole system.
     rows: Vec<usize>,
-    fine: Vec<Local>,
+    fine: Vec<Subdomain>,
     coarse: Coarse<D>,
     /// Weights on the coarse rows to values at this level's rows.
     down: Transfer<D>,
@@ -241,7 +283,7 @@ impl<const D: usize> Coarse<D> {
                 for (k, &i) in local.rows.iter().enumerate() {
                     z[i] = y[k];
                 }
-                z[n..].copy_from_slice(&y[local.keep..]);
+                z[n..].copy_from_slice(&y[local.rows.len()..]);
                 z
             }
             Coarse::Nested(level, product) => {
@@ -343,7 +385,13 @@ impl<const D: usize> Schwarz<D> {
         let points: Vec<[f64; D]> = rows.iter().map(|&i| all[i]).collect();
         let m = rows.len();
         let tree = Tree::new(&points, settings.inner);
-        let extended = settings.extended.max(settings.inner);
+        let nested = m / 24 > 2 * settings.coarse && depth + 2 <= settings.levels;
+        let extended = if nested {
+            settings.extended_nested
+        } else {
+            settings.extended
+        };
+        let extended = extended.max(settings.inner);
         let fine = tree
             .leaves()
             .into_par_iter()
@@ -356,10 +404,10 @@ impl<const D: usize> Schwarz<D> {
                         .filter(|i| !inner.contains(i))
                         .map(|i| rows[i]),
                 );
-                Local::new(system, ordered, inner.len(), true)
+                Subdomain::new(system, ordered, inner.len())
             })
             .collect();
-        let coarse = if m / 24 > 2 * settings.coarse && depth + 2 <= settings.levels {
+        let coarse = if nested {
             let subset: Vec<usize> = spread_subset(&points, m / 24)
                 .into_iter()
                 .map(|i| rows[i])
@@ -375,9 +423,8 @@ impl<const D: usize> Schwarz<D> {
                 .into_iter()
                 .map(|i| rows[i])
                 .collect();
-            let keep = subset.len();
-            let local = Local::new(system, subset, keep, false)
-                .or_else(|| Local::new(system, rows.clone(), m, false))
+            let local = Local::new(system, subset)
+                .or_else(|| Local::new(system, rows.clone()))
                 .unwrap_or_else(|| {
                     // Not reached for a system that passed rbf-core's checks; an empty coarse
                     // level only weakens the preconditioner.
@@ -410,13 +457,10 @@ impl<const D: usize> Schwarz<D> {
         let parts: Vec<Vec<f64>> = self
             .fine
             .par_iter()
-            .map(|local| {
-                let hl: Vec<f64> = local.rows.iter().map(|&i| h_fine[i]).collect();
-                local.solve(&hl, &vec![0.0; local.poly])
-            })
+            .map(|subdomain| subdomain.solve(&h_fine))
             .collect();
-        for (local, part) in self.fine.iter().zip(&parts) {
-            for (&i, &v) in local.rows[..local.keep].iter().zip(part) {
+        for (subdomain, part) in self.fine.iter().zip(&parts) {
+            for (&i, &v) in subdomain.rows[..subdomain.keep].iter().zip(part) {
                 z[i] += v;
             }
         }
@@ -472,9 +516,7 @@ fn moments_left<const D: usize>(
 fn empty_local<const D: usize>() -> Local {
     Local {
         rows: Vec::new(),
-        keep: 0,
         poly: 0,
-        weight_scale: 1.0,
         lu: PackedLu::new(Mat::<f64>::identity(1, 1), Par::Seq),
     }
 }
@@ -533,4 +575,77 @@ fn spread_subset<const D: usize>(points: &[[f64; D]], count: usize) -> Vec<usize
                 .unwrap_or(idx[0])
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rbf_core::{Constraint, FitSettings};
+
+    /// `n` rows on a bumpy sphere, with values that are not affine.
+    fn bumpy(n: usize) -> System<3> {
+        let constraints: Vec<Constraint<3>> = (0..n)
+            .map(|i| {
+                let t = i as f64 * 2.399_963;
+                let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+                let r = (1.0 - z * z).sqrt() * (1.0 + 0.1 * (5.0 * t).sin());
+                let p = [r * t.cos(), r * t.sin(), z];
+                Constraint::interior(p, 1.2 + (3.0 * p[0]).sin() * p[2])
+            })
+            .collect();
+        System::new(&constraints, &FitSettings::default()).unwrap()
+    }
+
+    #[test]
+    fn a_subdomain_keeping_every_row_solves_its_system_with_no_moments() {
+        let system = bumpy(60);
+        let rows: Vec<usize> = (0..60).collect();
+        let subdomain = Subdomain::new(&system, rows, 60).unwrap();
+        let h = system.values();
+        let w = subdomain.solve(h);
+        let points = system.normalized_points();
+        // Moment conditions: Σ w = Σ w x = 0.
+        let scale = w.iter().map(|v| v.abs()).sum::<f64>();
+        for d in 0..=3 {
+            let moment: f64 = (0..60)
+                .map(|i| w[i] * if d == 0 { 1.0 } else { points[i][d - 1] })
+                .sum();
+            assert!(moment.abs() < 1e-9 * scale, "moment {d}: {moment:e}");
+        }
+        // What the kernel part leaves of h is affine: its least-squares affine fit leaves nothing.
+        let left: Vec<f64> = (0..60)
+            .map(|i| {
+                let f: f64 = (0..60)
+                    .map(|j| {
+                        let r2: f64 = (0..3).map(|d| (points[i][d] - points[j][d]).powi(2)).sum();
+                        w[j] * system.kernel().phi(r2.sqrt())
+                    })
+                    .sum();
+                h[i] - f
+            })
+            .collect();
+        let column = |c: usize, i: usize| if c == 0 { 1.0 } else { points[i][c - 1] };
+        let normal = Mat::<f64>::from_fn(4, 4, |a, b| {
+            (0..60).map(|i| column(a, i) * column(b, i)).sum()
+        });
+        let mut c = Mat::<f64>::from_fn(4, 1, |a, _| (0..60).map(|i| column(a, i) * left[i]).sum());
+        PackedLu::new(normal, Par::Seq).solve_in_place(c.as_mut());
+        let worst = (0..60)
+            .map(|i| (left[i] - (0..4).map(|a| c[(a, 0)] * column(a, i)).sum::<f64>()).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-9, "{worst:e}");
+    }
+
+    #[test]
+    fn a_subdomain_keeps_the_weights_its_whole_solve_gives_its_leaf() {
+        let system = bumpy(80);
+        let rows: Vec<usize> = (0..80).rev().collect();
+        let whole = Subdomain::new(&system, rows.clone(), 80).unwrap();
+        let leaf = Subdomain::new(&system, rows, 25).unwrap();
+        let (all, kept) = (whole.solve(system.values()), leaf.solve(system.values()));
+        assert_eq!(kept.len(), 25);
+        for (a, b) in kept.iter().zip(&all) {
+            assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} against {b}");
+        }
+    }
 }
