@@ -499,7 +499,6 @@ impl Job<'_> {
                     format!("{rows} rows: factoring the subdomains")
                 }
                 IterativeProgress::FarField { order } => {
-                    solving.set(Instant::now());
                     format!("{rows} rows: products through the far field (order {order})")
                 }
                 IterativeProgress::DirectSums => format!("{rows} rows: products by direct sums"),
