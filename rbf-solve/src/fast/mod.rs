@@ -401,9 +401,10 @@ pub fn check_iterative_fits(
     }
     let coarse = (s.coarse.min(rows) + dim + 1) as u64;
     // The maps and a tenth more for the allocator, and on every core one subdomain's system
-    // being factored with its leaf's columns (measured: NN GB peak for the whole `rbf fit` at
-    // 10⁵ rows with the default settings, NN GB by this estimate); the coarse level; two Krylov
-    // vectors per step of a restart cycle.
+    // being factored with its leaf's columns; the coarse level; two Krylov vectors per step of
+    // a restart cycle (measured peaks of the whole `rbf fit` on the peers' surface problem with
+    // the default settings: 0.69 GB at 10⁵ rows, 0.66 GB by this estimate; 7.4 GB at 10⁶ rows,
+    // 7.8 GB by this estimate).
     let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as u64;
     let vectors = 2 * (options.restart as u64 + 2);
     let numbers = kept.saturating_mul(11) / 10;
