@@ -394,11 +394,33 @@ pub fn calibrated<const D: usize>(
     sample: &[[f64; D]],
     error: f64,
 ) -> Option<(FarField<D>, Charges, f64)> {
+    calibrated_above(kernel, centres, weights, sample, error, 0)
+}
+
+/// As [`calibrated`], trying only orders above `above` (a far field found less accurate than
+/// needed gives way to a higher order).
+///
+/// ```
+/// use rbf_core::Kernel;
+/// let centres: Vec<[f64; 3]> = (0..5000).map(|i| [i as f64 * 1e-3, (i % 7) as f64, 0.0]).collect();
+/// let weights = vec![1e-3; 5000];
+/// let sample = [[0.5, 0.5, 0.5], [3.0, -1.0, 2.0]];
+/// let (field, _, _) = rbf_far::calibrated_above(Kernel::Cubic, &centres, &weights, &sample, 1.0, 12).unwrap();
+/// assert_eq!(field.settings().order, 14);
+/// ```
+pub fn calibrated_above<const D: usize>(
+    kernel: Kernel,
+    centres: &[[f64; D]],
+    weights: &[f64],
+    sample: &[[f64; D]],
+    error: f64,
+    above: usize,
+) -> Option<(FarField<D>, Charges, f64)> {
     let mut exact = vec![0.0; sample.len()];
     InterpolantView::new(kernel, centres, weights, 0.0, [0.0; D])
         .and_then(|f| f.par_values_compensated(sample, &mut exact))
         .ok()?;
-    for order in ORDERS {
+    for order in ORDERS.into_iter().filter(|&o| o > above) {
         let settings = FarFieldSettings {
             order,
             ..FarFieldSettings::default()

@@ -15,6 +15,6 @@ mod settings;
 mod tree;
 
 pub use evaluator::{Evaluator, FAR_FIELD_CENTRES, Method, default_accuracy};
-pub use field::{Charges, FarField, calibrated};
+pub use field::{Charges, FarField, calibrated, calibrated_above};
 pub use settings::FarFieldSettings;
 pub use tree::{Node, Tree, bounds, box_gap2, point_gap2};

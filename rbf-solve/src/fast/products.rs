@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{PoisonError, RwLock};
 
 use rbf_core::{InterpolantView, System};
-use rbf_far::{FarField, FarFieldSettings, calibrated};
+use rbf_far::{FarField, FarFieldSettings, calibrated, calibrated_above};
 
 /// Rows from which the far field is tried by default. The solver's accuracy takes order 12 on
 /// the peers' surface problem, where one far product costs about what compensated direct sums
@@ -28,9 +28,6 @@ const RELAXED: [(usize, f64); 3] = [(10, 0.8), (12, 0.9), (12, 0.7)];
 /// Rows at which direct sums certify a residual: the worst of the fast residual, and as many
 /// spread over the rows.
 const CERTIFIED_ROWS: usize = 1000;
-
-/// The highest order a far field that failed a certification is refined to.
-const MAX_ORDER: usize = 16;
 
 /// How the products are taken.
 pub(crate) struct Products<'a, const D: usize> {
@@ -90,23 +87,17 @@ impl<'a, const D: usize> Products<'a, D> {
     pub(crate) fn refine(&self, x: &[f64]) -> Option<usize> {
         let system = self.system;
         let points = system.normalized_points();
-        let weights = &x[..points.len()];
-        let order = self.order()?;
         let sample = calibration_sample(points);
-        let mut exact = vec![0.0; sample.len()];
-        let measured = InterpolantView::new(system.kernel(), points, weights, 0.0, [0.0; D])
-            .and_then(|f| f.par_values_compensated(&sample, &mut exact));
-        let better = measured.ok().and_then(|()| {
-            (order + 2..=MAX_ORDER).step_by(2).find_map(|order| {
-                let settings = FarFieldSettings {
-                    order,
-                    ..FarFieldSettings::default()
-                };
-                let field = FarField::new(system.kernel(), points, &settings);
-                let (_, error) = field.error_at(weights, &sample, &exact)?;
-                (error <= 0.5 * self.accuracy).then_some(field)
-            })
-        });
+        let weights = &x[..points.len()];
+        let better = calibrated_above(
+            system.kernel(),
+            points,
+            weights,
+            &sample,
+            0.5 * self.accuracy,
+            self.order()?,
+        )
+        .map(|(field, _, _)| field);
         let order = better.as_ref().map(|f| f.settings().order);
         *self.far.write().unwrap_or_else(PoisonError::into_inner) = better;
         order
