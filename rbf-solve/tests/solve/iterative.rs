@@ -185,13 +185,12 @@ fn a_nested_coarse_level_keeps_the_iterations_of_one_factored_whole() {
     // 12 000 rows. Two levels with one row in 24 factored whole (500 rows), as the default
     // settings have up to 10⁵ rows; two levels with only 20 coarse rows, as 4096 would be for
     // 10⁶; and three levels: the 500 rows are themselves split into subdomains over 20 coarse
-    // rows, and only those 20 are factored whole; and the same with the top level's subdomains
-    // widened from 160 rows to 240 (`extended_nested`).
+    // rows, and only those 20 are factored whole; and the same with the subdomains widened
+    // from 160 rows to 240.
     let cs = bumpy(6000, 13);
     let whole = SchwarzSettings {
         inner: 64,
         extended: 160,
-        extended_nested: 160,
         coarse: 500,
         levels: 2,
     };
@@ -205,7 +204,7 @@ fn a_nested_coarse_level_keeps_the_iterations_of_one_factored_whole() {
     };
     let whole = iterations_with(&cs, whole).expect("a coarse level factored whole converges");
     let wide = SchwarzSettings {
-        extended_nested: 240,
+        extended: 240,
         ..nested
     };
     let wide =
