@@ -58,7 +58,7 @@ class RBFInterpolator:
         epsilon: Optional[float] = None,
         degree: Optional[int] = None,
         *,
-        max_residual: float = 1e-6,
+        max_residual: Optional[float] = None,
         method: str = "auto",
     ) -> None:
         if neighbors is not None:

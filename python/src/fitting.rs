@@ -39,6 +39,9 @@ struct Rows<'py> {
     settings: FitSettings,
     method: rbf_solve::Method,
     allow_unconverged: bool,
+    /// Whether the caller set `max_residual`: then it is kept, neither raised to the far
+    /// field's limit nor relaxed to a rounding floor (as `rbf fit --max-residual`).
+    explicit_limit: bool,
 }
 
 /// The whole fit of D-dimensional constraints, without the GIL.
@@ -86,6 +89,12 @@ where
         method: rows.method,
         iterative: IterativeOptions {
             allow_unconverged: rows.allow_unconverged,
+            accept_rounding_floor: !rows.explicit_limit,
+            far_field_limit: if rows.explicit_limit {
+                None
+            } else {
+                IterativeOptions::default().far_field_limit
+            },
             ..Default::default()
         },
         ..FitOptions::default()
@@ -105,7 +114,7 @@ where
 /// value at the offset point and ``normals`` has the outward normal), ``smoothing`` λᵢ per
 /// constraint on top of the global ``lam``.
 #[pyfunction]
-#[pyo3(signature = (points, kinds, values, normals, smoothing, *, kernel=None, lam=0.0, offset=None, method="auto", max_residual=1e-6, allow_unconverged=false))]
+#[pyo3(signature = (points, kinds, values, normals, smoothing, *, kernel=None, lam=0.0, offset=None, method="auto", max_residual=None, allow_unconverged=false))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn _fit(
     py: Python<'_>,
@@ -118,7 +127,7 @@ pub(crate) fn _fit(
     lam: f64,
     offset: Option<f64>,
     method: &str,
-    max_residual: f64,
+    max_residual: Option<f64>,
     allow_unconverged: bool,
 ) -> PyResult<Model> {
     let positions = Floats::new(points, "points")?;
@@ -155,14 +164,18 @@ pub(crate) fn _fit(
             "offset must be a finite distance > 0, not {o}"
         )));
     }
-    if !(max_residual > 0.0) {
-        return Err(bad(format!("max_residual must be > 0, not {max_residual}")));
+    if let Some(r) = max_residual
+        && !(r.is_finite() && r >= 1e-15)
+    {
+        return Err(bad(format!(
+            "max_residual must be a finite fraction of max|h| ≥ 1e-15 (double precision cannot certify less), not {r}"
+        )));
     }
     let settings = FitSettings {
         kernel: self::kernel(kernel)?,
         lambda: lam,
         normal_offset: offset.map_or(NormalOffset::default(), NormalOffset::Absolute),
-        max_residual,
+        max_residual: max_residual.unwrap_or(FitSettings::default().max_residual),
         ..Default::default()
     };
     let rows = Rows {
@@ -174,6 +187,7 @@ pub(crate) fn _fit(
         settings,
         method,
         allow_unconverged,
+        explicit_limit: max_residual.is_some(),
     };
     if dim == 2 {
         fit_in::<2>(py, &rows)

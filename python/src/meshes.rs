@@ -85,7 +85,7 @@ pub(crate) fn _convert<'py>(
                 tolerance: None,
             };
             let (model, r) = py
-                .detach(|| convert_normals(&mesh, &settings))
+                .detach(|| convert_normals(&mesh, &settings, |_| {}))
                 .map_err(fail)?;
             report.set_item("vertices", r.vertices)?;
             report.set_item("vertices_used", r.vertices_used)?;

@@ -133,3 +133,12 @@ def test_bad_options_are_value_errors_not_panics():
             call()
     with pytest.raises(NotImplementedError):
         rbfsurf.RBFInterpolator(p, p[:, 0], neighbors=10)
+
+
+@pytest.mark.parametrize("bad", [0.0, -1e-3, float("nan"), float("inf"), 1e-20])
+def test_an_impossible_accuracy_names_max_residual(bad):
+    p = sphere_points(50)
+    with pytest.raises(rbfsurf.RbfError, match=r"max_residual must be a finite fraction of max\|h\| ≥ 1e-15"):
+        rbfsurf.from_oriented_points(p, p, max_residual=bad)
+    with pytest.raises(rbfsurf.RbfError, match="max_residual"):
+        rbfsurf.RBFInterpolator(p, np.ones(50), max_residual=bad)

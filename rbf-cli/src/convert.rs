@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use crate::fit_progress::FitMessages;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rbf_convert::{
@@ -110,7 +111,10 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                 ));
             }
             let spinner = crate::common::spinner(quiet, "fitting normal constraints".into());
-            let result = convert_normals(&mesh, &settings);
+            let mut messages = FitMessages::new(rbf_core::FitSettings::default().max_residual);
+            let result = convert_normals(&mesh, &settings, |p| {
+                spinner.set_message(messages.message(p));
+            });
             spinner.finish_and_clear();
             let (model, report) = result.map_err(failure)?;
             write_atomically(&args.output, model.to_json().as_bytes())?;

@@ -3,14 +3,12 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use crate::fit_progress::FitMessages;
 use clap::{Args, ValueEnum};
 use rbf_core::{
     AnyModel, Constraint, ConstraintFile, FitSettings, Model, NormalOffset, SolveMethod,
 };
-use rbf_solve::{
-    FitOptions, FitProgress, GreedySettings, IterativeOptions, IterativeProgress, Method,
-    SolveOptions, Strategy,
-};
+use rbf_solve::{FitOptions, GreedySettings, IterativeOptions, Method, SolveOptions, Strategy};
 
 use crate::KernelArg;
 use crate::common::{read_text, spinner, write_atomically};
@@ -31,7 +29,7 @@ Input formats:
   Point clouds, 3D, by extension:
     .ply   vertices with x y z nx ny nz (ASCII or binary; faces ignored): oriented points
     .npy   N x 6 (x y z nx ny nz) oriented points, or N x 4 (x y z value); float64 or float32
-  A cloud without normals is refused: estimate them first (Open3D, MeshLab).
+  A cloud without normals is refused here: `rbf reconstruct` estimates and orients them.
 
 Examples:
   rbf fit points.txt -o model.json
@@ -207,6 +205,14 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
     }
     settings.min_separation = args.min_separation;
     if let Some(r) = args.max_residual {
+        if !(r.is_finite() && r >= 1e-15) {
+            return Err(Failure::new(
+                USAGE,
+                format!(
+                    "--max-residual must be a finite fraction of max|h| ≥ 1e-15 (double precision cannot certify less), not {r}"
+                ),
+            ));
+        }
         settings.max_residual = r;
     }
     if let Some(o) = args.offset {
@@ -262,8 +268,14 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
             } else {
                 IterativeOptions::default().relaxed_rows
             },
-            // A limit the user set is kept: missing it is an error, not a note.
+            // A limit the user set is kept: missing it is an error, not a note, and it is not
+            // raised to the far field's.
             accept_rounding_floor: args.max_residual.is_none(),
+            far_field_limit: if args.max_residual.is_none() {
+                IterativeOptions::default().far_field_limit
+            } else {
+                None
+            },
             ..Default::default()
         },
         greedy: GreedySettings {
@@ -343,7 +355,7 @@ fn read_cloud(path: &std::path::Path, source: &str) -> Result<Option<Vec<Constra
         Failure::new(
             BAD_INPUT,
             format!(
-                "{source} has points but no normals: a surface through points needs each point's outward normal (PLY vertex properties nx ny nz, or .npy columns 4-6); estimate them first (Open3D's estimate_normals, MeshLab's Compute Normals for Point Sets), or give values: x y z value"
+                "{source} has points but no normals: a surface through points needs each point's outward normal (PLY vertex properties nx ny nz, or .npy columns 4-6); `rbf reconstruct` estimates and orients them and fits the surface, or give values: x y z value"
             ),
         )
     };
@@ -428,25 +440,6 @@ struct Job<'a> {
     greedy: GreedySettings,
 }
 
-/// ", about N s left": the iterations still needed if the residual keeps falling at its rate
-/// since the first iteration (`first`: that iteration's estimate), at the average time of an
-/// iteration so far; empty until it can tell.
-fn time_left(
-    since: Instant,
-    first: f64,
-    iteration: usize,
-    estimate: f64,
-    tolerance: f64,
-) -> String {
-    let rate = (estimate / first).ln() / (iteration as f64 - 1.0);
-    if !(iteration >= 3 && rate < 0.0 && estimate > tolerance) {
-        return String::new();
-    }
-    let more = (tolerance / estimate).ln() / rate;
-    let seconds = since.elapsed().as_secs_f64() / iteration as f64 * more;
-    format!(", about {seconds:.0} s left")
-}
-
 impl Job<'_> {
     fn run<const D: usize>(&self) -> Result<(), Failure> {
         let constraints: Vec<Constraint<D>> = match self.input {
@@ -477,59 +470,9 @@ impl Job<'_> {
             .tolerance
             .unwrap_or(self.settings.max_residual);
         let spinner = spinner(self.quiet, format!("checking {rows} rows"));
-        let rounding_floor = std::cell::Cell::new(None);
-        let relaxed = std::cell::Cell::new(None);
-        let solving = std::cell::Cell::new(Instant::now());
-        let first = std::cell::Cell::new(f64::NAN);
+        let mut messages = FitMessages::new(tolerance);
         let fit = rbf_solve::fit_with(&constraints, &self.settings, &options, |p| {
-            let p = match p {
-                FitProgress::Checking { rows } => {
-                    return spinner.set_message(format!("checking {rows} rows"));
-                }
-                FitProgress::Factoring { rows } => {
-                    return spinner.set_message(format!("solving a dense system of {rows} rows"));
-                }
-                FitProgress::Iterative(p) => p,
-            };
-            if let IterativeProgress::RoundingFloor { floor, .. } = p {
-                rounding_floor.set(Some(floor));
-            }
-            spinner.set_message(match p {
-                IterativeProgress::Preconditioning => {
-                    format!("{rows} rows: factoring the subdomains")
-                }
-                IterativeProgress::FarField { order } => {
-                    format!("{rows} rows: products through the far field (order {order})")
-                }
-                IterativeProgress::DirectSums => format!("{rows} rows: products by direct sums"),
-                IterativeProgress::Relaxed { products, of } => {
-                    relaxed.set(Some((products, of)));
-                    format!("{rows} rows: {products} of {of} products through a relaxed far field")
-                }
-                IterativeProgress::RoundingFloor { residual, .. } => {
-                    format!("{rows} rows: stopped at residual {residual:.1e}, the rounding floor")
-                }
-                IterativeProgress::Iteration {
-                    iteration,
-                    estimate,
-                } => {
-                    if iteration == 1 {
-                        first.set(estimate);
-                    }
-                    let left =
-                        time_left(solving.get(), first.get(), iteration, estimate, tolerance);
-                    format!("{rows} rows: iteration {iteration}, residual ≈ {estimate:.1e}{left}")
-                }
-                IterativeProgress::Checked {
-                    iteration,
-                    residual,
-                } => {
-                    if iteration == 0 {
-                        solving.set(Instant::now());
-                    }
-                    format!("{rows} rows: iteration {iteration}, residual {residual:.1e}")
-                }
-            })
+            spinner.set_message(messages.message(p));
         });
         spinner.finish_and_clear();
         let fit = fit.map_err(|e| Failure::fit(self.source, &e))?;
@@ -544,8 +487,14 @@ impl Job<'_> {
         write_atomically(self.output, model.to_json().as_bytes())?;
         // A fit above the limit: stopped where double precision stops it, or let through by
         // --allow-unconverged.
-        let limit = self.settings.max_residual;
-        if let Some(floor) = rounding_floor.get() {
+        let limit = messages.limit.unwrap_or(self.settings.max_residual);
+        if let Some(limit) = messages.limit {
+            eprintln!(
+                "rbf: note: fitted to {limit:.0e} of max|h|, the default limit for fits through the far field ({} rows or more); --max-residual 1e-6 asks for the usual limit, by direct sums where the far field cannot reach it (minutes a product at 10⁶ rows)",
+                IterativeOptions::default().far_field_rows
+            );
+        }
+        if let Some(floor) = messages.rounding_floor {
             eprintln!(
                 "rbf: note: the iterative solve stalled at residual {:.1e}, above --max-residual {limit:.1e} but within what double precision allows for these constraints ({floor:.1e}: their weights are large and cancel); the model was written with that residual (a small --lambda gives a smoother, better conditioned fit)",
                 report.residual
@@ -557,7 +506,7 @@ impl Job<'_> {
             );
         }
         if !self.quiet {
-            let how = match (report.method, relaxed.get()) {
+            let how = match (report.method, messages.relaxed) {
                 (SolveMethod::Iterative, Some((products, of))) if self.verbose => format!(
                     "{} iterations ({products} of {of} products through a relaxed far field)",
                     report.iterations

@@ -244,7 +244,7 @@ fn figures_3_and_6(g: &mut Gallery) -> Result<(), Failure> {
         max_vertices: 800,
         ..Default::default()
     };
-    let (cow, _) = rbf_convert::convert_normals(&mesh, &settings).map_err(bad)?;
+    let (cow, _) = rbf_convert::convert_normals(&mesh, &settings, |_| {}).map_err(bad)?;
     g.save("fig3-fig6", &cow)?;
     let (lo, hi) = mesh.bounding_box();
     let camera = Camera::orbit(lo, hi, 215.0, 20.0, g.size, g.size);

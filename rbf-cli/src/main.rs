@@ -17,6 +17,7 @@ mod eval;
 mod export;
 mod failure;
 mod fit;
+mod fit_progress;
 mod floaters;
 mod gallery;
 mod info;

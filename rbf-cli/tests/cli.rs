@@ -235,6 +235,22 @@ fn eval_refuses_an_accuracy_that_is_not_positive_and_finite() {
 }
 
 #[test]
+fn fit_refuses_an_accuracy_it_cannot_certify() {
+    let dir = tempfile::tempdir().unwrap();
+    for bad in ["0", "-1e-6", "NaN", "inf", "1e-20"] {
+        let option = format!("--max-residual={bad}");
+        let (model, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &[&option]);
+        assert_eq!(o.status.code(), Some(1), "--max-residual {bad}");
+        assert!(
+            stderr(&o).contains("--max-residual must be a finite fraction"),
+            "{}",
+            stderr(&o)
+        );
+        assert!(!model.exists(), "nothing written for --max-residual {bad}");
+    }
+}
+
+#[test]
 fn eval_checks_the_points_dimension() {
     let dir = tempfile::tempdir().unwrap();
     let (model, o) = fit_file(dir.path(), "tet.txt", TETRAHEDRON, &["-q"]);

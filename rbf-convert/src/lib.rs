@@ -21,7 +21,7 @@
 //!     vec![[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]],
 //! )
 //! .unwrap();
-//! let (model, report) = convert_normals(&mesh, &NormalSettings::default()).unwrap();
+//! let (model, report) = convert_normals(&mesh, &NormalSettings::default(), |_| {}).unwrap();
 //! assert_eq!(report.vertices_used, 6);
 //! assert!(model.interpolant.value(&[0.0; 3]) > 0.0); // inside
 //! assert!(model.interpolant.value(&[1.0, 0.0, 0.0]).abs() < 1e-9); // through the vertices

@@ -55,10 +55,12 @@ pub struct NormalReport {
 }
 
 /// Converts a mesh to an interpolating implicit surface through its vertices, with normal
-/// constraints against the vertex normals, fitted with rbf-solve.
+/// constraints against the vertex normals, fitted with rbf-solve (`progress` hears the fit's
+/// reports; the greedy choice reports nothing).
 pub fn convert_normals(
     mesh: &TriMesh,
     settings: &NormalSettings,
+    progress: impl FnMut(rbf_solve::FitProgress),
 ) -> Result<(Model<3>, NormalReport), ConvertError> {
     let normals = mesh.vertex_normals();
     let mut used = vec![false; mesh.positions().len()];
@@ -87,7 +89,12 @@ pub fn convert_normals(
             let constraints: Vec<Constraint<3>> =
                 chosen.iter().map(|&i| normal(candidates[i])).collect();
             (
-                rbf_solve::fit(&constraints, &fit_settings)?,
+                rbf_solve::fit_with(
+                    &constraints,
+                    &fit_settings,
+                    &rbf_solve::FitOptions::default(),
+                    progress,
+                )?,
                 constraints,
                 None,
             )

@@ -12,7 +12,7 @@ fn data(name: &str) -> std::path::PathBuf {
 #[test]
 fn a_sphere_like_mesh_gives_the_sphere_to_one_percent() {
     let mesh = rbf_mesh::TriMesh::icosphere(3); // 642 vertices on the unit sphere
-    let (model, report) = convert_normals(&mesh, &NormalSettings::default()).unwrap();
+    let (model, report) = convert_normals(&mesh, &NormalSettings::default(), |_| {}).unwrap();
     assert_eq!((report.vertices_used, report.thinned), (642, false));
     let f = &model.interpolant;
     for d in rbf_core::shapes::fibonacci_sphere(300) {
@@ -34,7 +34,7 @@ fn a_sphere_like_mesh_gives_the_sphere_to_one_percent() {
 #[test]
 fn the_torus_converts_to_a_closed_genus_one_surface_near_the_mesh() {
     let mesh = read_mesh(&data("torus.obj")).unwrap();
-    let (model, report) = convert_normals(&mesh, &NormalSettings::default()).unwrap();
+    let (model, report) = convert_normals(&mesh, &NormalSettings::default(), |_| {}).unwrap();
     assert_eq!(report.vertices_used, 2304);
     let f = model.interpolant.view();
     // The surface passes through every vertex.
@@ -69,7 +69,7 @@ fn large_meshes_are_thinned_evenly_and_say_so() {
         max_vertices: 600,
         ..Default::default()
     };
-    let (model, report) = convert_normals(&mesh, &s).unwrap();
+    let (model, report) = convert_normals(&mesh, &s, |_| {}).unwrap();
     assert!(report.thinned);
     assert!(
         report.vertices_used <= 600 && report.vertices_used > 450,
@@ -109,7 +109,7 @@ fn a_mesh_without_normals_is_an_error() {
         vec![[0, 1, 2], [0, 2, 1]],
     )
     .unwrap();
-    let e = convert_normals(&mesh, &NormalSettings::default()).unwrap_err();
+    let e = convert_normals(&mesh, &NormalSettings::default(), |_| {}).unwrap_err();
     assert!(e.to_string().contains("normal"), "{e}");
 }
 
@@ -121,7 +121,7 @@ fn greedy_vertices_meet_every_vertex_within_the_tolerance() {
         tolerance: Some(tolerance),
         ..Default::default()
     };
-    let (model, report) = convert_normals(&mesh, &s).unwrap();
+    let (model, report) = convert_normals(&mesh, &s, |_| {}).unwrap();
     let (worst, converged) = report.greedy.unwrap();
     assert!(converged && worst <= tolerance, "{report:?}");
     assert!(

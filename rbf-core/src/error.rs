@@ -45,7 +45,7 @@ pub enum FitError {
     /// A setting is out of its range.
     #[error("setting {name} = {value}: {rule}")]
     InvalidSetting {
-        /// Name of the setting in messages: `"lambda"` or `"normal offset"`.
+        /// Name of the setting in messages: `"lambda"`, `"normal offset"`, `"max_residual"`.
         name: &'static str,
         /// The setting's value as given.
         value: f64,

@@ -396,6 +396,14 @@ fn check_each<const D: usize>(
             rule: "λ must be finite and ≥ 0",
         });
     }
+    // A relative residual below about 5ε cannot be measured, let alone met.
+    if !(settings.max_residual.is_finite() && settings.max_residual >= 1e-15) {
+        return Err(FitError::InvalidSetting {
+            name: "max_residual",
+            value: settings.max_residual,
+            rule: "the largest accepted residual must be finite and ≥ 1e-15 (double precision cannot certify less)",
+        });
+    }
     for (i, c) in constraints.iter().enumerate() {
         let bad = |field, rule| FitError::InvalidValue {
             constraint: i,

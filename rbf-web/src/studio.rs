@@ -146,7 +146,7 @@ impl Studio {
             max_vertices: MAX_MESH_VERTICES,
             ..Default::default()
         };
-        let (model, _) = rbf_convert::convert_normals(&mesh, &settings)?;
+        let (model, _) = rbf_convert::convert_normals(&mesh, &settings, |_| {})?;
         Self::with_session(Session::from_model(&model)?)
     }
 

@@ -318,6 +318,42 @@ fn far_field_products_reach_the_tolerance_at_every_row() {
     );
 }
 
+/// Through the far field, a limit left at its default is raised to the far field's (1e-5) and
+/// said; the fit meets it at every row (measured here by direct sums). A limit the caller set
+/// is kept and nothing is raised.
+#[test]
+fn the_default_limit_through_the_far_field_is_the_far_fields() {
+    let cs = bumpy(10_000, 77);
+    let settings = FitSettings::default();
+    let system = System::new(&cs, &settings).unwrap();
+    let options = IterativeOptions {
+        far_field_rows: 10_000,
+        ..IterativeOptions::default()
+    };
+    let mut limits = Vec::new();
+    let fit = solve_iterative(&system, &settings, &options, |p| {
+        if let IterativeProgress::FarFieldLimit { limit } = p {
+            limits.push(limit);
+        }
+    })
+    .unwrap();
+    assert_eq!(limits, [1e-5]);
+    let measured = system.relative_residual(&fit.interpolant);
+    assert!(measured <= 1e-5, "residual {measured:e} at some row");
+    // A limit the caller set (here looser, as a fit that needs only 1e-4 would) is kept.
+    let asked = FitSettings {
+        max_residual: 1e-4,
+        ..settings
+    };
+    let mut raised = false;
+    let fit = solve_iterative(&system, &asked, &options, |p| {
+        raised |= matches!(p, IterativeProgress::FarFieldLimit { .. });
+    })
+    .unwrap();
+    assert!(!raised, "a limit the caller set is kept");
+    assert!(system.relative_residual(&fit.interpolant) <= 1e-4);
+}
+
 /// Inexact Krylov: once the residual is small, products go through cheaper far fields, and the
 /// fit still meets the default tolerance at every row (measured here by direct sums), in no
 /// more iterations than with exact products.
