@@ -83,7 +83,7 @@ impl Local {
     /// core.
     fn new<const D: usize>(system: &System<D>, rows: Vec<usize>) -> Option<Self> {
         // Unscaled, the weights are the whole system's.
-        let (matrix, poly, _) = local_matrix(system, &rows, false);
+        let (matrix, poly) = local_matrix(system, &rows);
         let lu = PackedLu::new(matrix, faer::get_global_parallelism());
         let m = rows.len();
         let local = Self { rows, poly, lu };
@@ -132,17 +132,24 @@ impl Subdomain {
     /// columns an orthonormal basis of what they span of (1, x)); `None` if that fails (it shows
     /// as non-finite numbers).
     fn new<const D: usize>(system: &System<D>, rows: Vec<usize>, keep: usize) -> Option<Self> {
-        let (matrix, poly, weight_scale) = local_matrix(system, &rows, true);
         let m = rows.len();
+        let (points, scale_beta) = local_points(system, &rows, true);
+        let basis = orthonormal_affine_basis(&points);
+        let poly = basis.len();
         let sigma = system.kernel().definiteness();
-        let mut a = matrix.submatrix(0, 0, m, m).to_owned();
-        let mut p = matrix.submatrix(0, m, m, poly).to_owned();
+        let mut a = kernel_block(system, &rows, &points, scale_beta);
+        let mut p = Mat::<f64>::from_fn(m, poly, |i, j| basis[j][i]);
         let reflectors = householder(&mut p);
-        for (tau, v) in &reflectors {
-            reflect_both_sides(&mut a, *tau, v);
-        }
+        project(&mut a, &reflectors);
         let n = m - poly;
-        let mut s = Mat::<f64>::from_fn(n, n, |i, j| sigma * a[(poly + i, poly + j)]);
+        let mut s = a.as_mut().submatrix_mut(poly, poly, n, n);
+        if sigma < 0.0 {
+            for j in 0..n {
+                for i in j..n {
+                    s[(i, j)] = -s[(i, j)];
+                }
+            }
+        }
         // Rounding may leave a pivot of a nearly singular patch at or below zero: it is raised
         // to a small positive value (the preconditioner only needs to approximate).
         let largest = (0..n).map(|i| s[(i, i)].abs()).fold(0.0, f64::max);
@@ -177,7 +184,7 @@ impl Subdomain {
             reflectors,
             diagonal,
             lower,
-            scale: sigma * weight_scale,
+            scale: sigma / scale_beta,
         })
     }
 
@@ -255,28 +262,89 @@ fn reflect(x: &mut [f64], tau: f64, v: &[f64]) {
     x.iter_mut().zip(v).for_each(|(a, b)| *a -= tau * dot * b);
 }
 
-/// a ← H a H for the symmetric `a` and H = I − τvvᵀ: a − v uᵀ − u vᵀ with p = τ a v and
-/// u = p − (τ vᵀp / 2) v.
-fn reflect_both_sides(a: &mut Mat<f64>, tau: f64, v: &[f64]) {
-    let m = v.len();
-    // Columns are contiguous: p = τ Σⱼ vⱼ a₍:,ⱼ₎.
-    let mut p = vec![0.0; m];
-    for (j, vj) in v.iter().enumerate() {
-        if *vj != 0.0 {
-            let c = tau * vj;
-            p.iter_mut()
-                .zip(column(a, j))
-                .for_each(|(p, x)| *p += c * x);
+/// a ← Qᵀ a Q for the symmetric `a` (its lower triangle, read and written) and Q = H₁ ⋯ H_q,
+/// the reflectors' product, in two passes over it (compact WY form, Schreiber & Van Loan 1989): Q = I − V T Vᵀ with T upper
+/// triangular, W = aV, and then Qᵀ a Q = a − X Vᵀ − V Xᵀ with X = W T − ½ V Tᵀ(VᵀW)T.
+fn project(a: &mut Mat<f64>, reflectors: &[(f64, Vec<f64>)]) {
+    let q = reflectors.len();
+    let m = a.nrows();
+    let v = |c: usize| &reflectors[c].1;
+    let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+    // T: T[k][k] = τ_k, T[..k][k] = −τ_k T[..k][..k] V[..k]ᵀ v_k (row-major, q × q).
+    let mut t = vec![vec![0.0; q]; q];
+    for k in 0..q {
+        let tau = reflectors[k].0;
+        let vk: Vec<f64> = (0..k).map(|j| dot(v(j), v(k))).collect();
+        for i in 0..k {
+            t[i][k] = -tau * (i..k).map(|j| t[i][j] * vk[j]).sum::<f64>();
+        }
+        t[k][k] = tau;
+    }
+    // W = aV, one pass over a's lower triangle (a[i][j] for i > j also stands for a[j][i]).
+    let mut w = vec![vec![0.0; m]; q];
+    for j in 0..m {
+        let col = &column(a, j)[j..];
+        for c in 0..q {
+            let vc = &v(c)[j..];
+            let wc = &mut w[c][j..];
+            let f = vc[0];
+            wc[0] += col[0] * f;
+            wc[1..]
+                .iter_mut()
+                .zip(&col[1..])
+                .for_each(|(wi, ai)| *wi += ai * f);
+            // Eight partial sums, so that the dot product vectorizes.
+            let mut partial = [0.0; 8];
+            let (ac, vc) = (col[1..].chunks_exact(8), vc[1..].chunks_exact(8));
+            let (ar, vr) = (ac.remainder(), vc.remainder());
+            for (a8, v8) in ac.zip(vc) {
+                for k in 0..8 {
+                    partial[k] += a8[k] * v8[k];
+                }
+            }
+            wc[0] +=
+                partial.iter().sum::<f64>() + ar.iter().zip(vr).map(|(a, v)| a * v).sum::<f64>();
         }
     }
-    let half = 0.5 * tau * v.iter().zip(&p).map(|(a, b)| a * b).sum::<f64>();
-    let u: Vec<f64> = p.iter().zip(v).map(|(p, v)| p - half * v).collect();
+    // M = Tᵀ (VᵀW) T, then X = W T − ½ V M.
+    let g: Vec<Vec<f64>> = (0..q)
+        .map(|r| (0..q).map(|c| dot(v(r), &w[c])).collect())
+        .collect();
+    let gt: Vec<Vec<f64>> = (0..q)
+        .map(|r| {
+            (0..q)
+                .map(|c| (0..q).map(|k| g[r][k] * t[k][c]).sum())
+                .collect()
+        })
+        .collect();
+    let mm: Vec<Vec<f64>> = (0..q)
+        .map(|r| {
+            (0..q)
+                .map(|c| (0..q).map(|k| t[k][r] * gt[k][c]).sum())
+                .collect()
+        })
+        .collect();
+    let x: Vec<Vec<f64>> = (0..q)
+        .map(|c| {
+            (0..m)
+                .map(|i| {
+                    (0..q).map(|k| w[k][i] * t[k][c]).sum::<f64>()
+                        - 0.5 * (0..q).map(|k| v(k)[i] * mm[k][c]).sum::<f64>()
+                })
+                .collect()
+        })
+        .collect();
+    // a ← a − X Vᵀ − V Xᵀ on and below the diagonal, the second pass.
     for j in 0..m {
-        let (uj, vj) = (u[j], v[j]);
-        column_mut(a, j)
-            .iter_mut()
-            .zip(v.iter().zip(&u))
-            .for_each(|(x, (vi, ui))| *x -= vi * uj + ui * vj);
+        let (xj, vj): (Vec<f64>, Vec<f64>) = (0..q).map(|c| (x[c][j], v(c)[j])).unzip();
+        let col = &mut column_mut(a, j)[j..];
+        for c in 0..q {
+            let (xc, vc) = (&x[c][j..], &v(c)[j..]);
+            let (xjc, vjc) = (xj[c], vj[c]);
+            col.iter_mut()
+                .zip(xc.iter().zip(vc))
+                .for_each(|(a, (xi, vi))| *a -= xi * vjc + vi * xjc);
+        }
     }
 }
 
@@ -292,16 +360,14 @@ fn column_mut(a: &mut Mat<f64>, j: usize) -> &mut [f64] {
         .map_or(&mut [], |c| c.as_slice_mut())
 }
 
-/// The saddle-point matrix [Φ + Λ, P; Pᵀ, 0] of some rows, its number of polynomial columns, and
-/// the factor from its weights to the whole system's. With `rescale`, the rows are moved to
-/// their box's centre and scaled to unit size (their weights scale back by s^-β), and the
-/// polynomial columns are an orthonormal basis of what the rows span of (1, x): a flat patch
-/// gets fewer columns. Without, the columns are (1, x) in the system's coordinates.
-fn local_matrix<const D: usize>(
+/// Some rows' points, and s^β for the scale s they were divided by: with `rescale`, moved to
+/// their box's centre and scaled to unit size (their weights scale back by s^-β); without, as
+/// the system has them (s = 1).
+fn local_points<const D: usize>(
     system: &System<D>,
     rows: &[usize],
     rescale: bool,
-) -> (Mat<f64>, usize, f64) {
+) -> (Vec<[f64; D]>, f64) {
     let all = system.normalized_points();
     let (lo, hi) = bounds(all, rows);
     let (centre, s) = if rescale {
@@ -311,40 +377,50 @@ fn local_matrix<const D: usize>(
     } else {
         ([0.0; D], 1.0)
     };
-    let points: Vec<[f64; D]> = rows
+    let points = rows
         .iter()
         .map(|&i| core::array::from_fn(|d| (all[i][d] - centre[d]) / s))
         .collect();
+    (points, s.powi(system.kernel().scale_exponent()))
+}
+
+/// The kernel block Φ + Λ of some rows at their (local) points, on and below the diagonal only
+/// (what the Cholesky factorization reads).
+fn kernel_block<const D: usize>(
+    system: &System<D>,
+    rows: &[usize],
+    points: &[[f64; D]],
+    scale_beta: f64,
+) -> Mat<f64> {
     let m = rows.len();
-    let basis = if rescale {
-        orthonormal_affine_basis(&points)
-    } else {
-        (0..=D)
-            .map(|c| {
-                points
-                    .iter()
-                    .map(|p| if c == 0 { 1.0 } else { p[c - 1] })
-                    .collect()
-            })
-            .collect()
-    };
-    let q = basis.len();
-    let scale_beta = s.powi(system.kernel().scale_exponent());
     let kernel = system.kernel();
-    let matrix = Mat::<f64>::from_fn(m + q, m + q, |i, j| match (i < m, j < m) {
-        (true, true) => {
-            let r2: f64 = (0..D).map(|d| (points[i][d] - points[j][d]).powi(2)).sum();
-            let mut v = kernel.phi(r2.sqrt());
-            if i == j {
-                v += system.normalized_smoothing(rows[i]) / scale_beta;
-            }
-            v
+    let mut a = Mat::<f64>::zeros(m, m);
+    for j in 0..m {
+        let pj = points[j];
+        let col = column_mut(&mut a, j);
+        for (i, pi) in points.iter().enumerate().skip(j + 1) {
+            let r2: f64 = (0..D).map(|d| (pi[d] - pj[d]).powi(2)).sum();
+            col[i] = kernel.phi(r2.sqrt());
         }
-        (true, false) => basis[j - m][i],
-        (false, true) => basis[i - m][j],
+        col[j] = kernel.phi(0.0) + system.normalized_smoothing(rows[j]) / scale_beta;
+    }
+    a
+}
+
+/// The saddle-point matrix [Φ + Λ, P; Pᵀ, 0] of some rows in the system's coordinates, with the
+/// polynomial columns 1, x, and its number of polynomial columns.
+fn local_matrix<const D: usize>(system: &System<D>, rows: &[usize]) -> (Mat<f64>, usize) {
+    let (points, _) = local_points(system, rows, false);
+    let block = kernel_block(system, rows, &points, 1.0);
+    let (m, q) = (rows.len(), D + 1);
+    let poly = |i: usize, c: usize| if c == 0 { 1.0 } else { points[i][c - 1] };
+    let matrix = Mat::<f64>::from_fn(m + q, m + q, |i, j| match (i < m, j < m) {
+        (true, true) => block[(i.max(j), i.min(j))],
+        (true, false) => poly(i, j - m),
+        (false, true) => poly(j, i - m),
         (false, false) => 0.0,
     });
-    (matrix, q, 1.0 / scale_beta)
+    (matrix, q)
 }
 
 /// Gram–Schmidt (twice) on the columns 1, x₁ … x_D over the points, dropping a column that the
