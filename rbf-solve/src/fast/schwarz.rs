@@ -608,16 +608,7 @@ impl<const D: usize> Schwarz<D> {
         let m = rows.len();
         let tree = Tree::new(&points, settings.inner);
         let nested = m / 24 > 2 * settings.coarse && depth + 2 <= settings.levels;
-        let wanted = settings.coarse.min((m / 24).max(2048)).max(D + 1);
-        // A coarse level factored whole with one row in 8 or more (below about 16 000 rows)
-        // carries what a narrower overlap leaves: at most 512 rows (8000 rows of the peers'
-        // sphere 0.256 s against 0.305 s at 768, criterion).
-        let extended = if !nested && 8 * wanted >= m {
-            settings.extended.min(512)
-        } else {
-            settings.extended
-        };
-        let extended = extended.max(settings.inner);
+        let extended = settings.extended.max(settings.inner);
         let fine = tree
             .leaves()
             .into_par_iter()
@@ -644,6 +635,7 @@ impl<const D: usize> Schwarz<D> {
                 product,
             )
         } else {
+            let wanted = settings.coarse.min((m / 24).max(2048)).max(D + 1);
             let subset: Vec<usize> = spread_subset(&points, wanted)
                 .into_iter()
                 .map(|i| rows[i])
