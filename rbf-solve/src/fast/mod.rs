@@ -262,6 +262,7 @@ pub fn solve_iterative<const D: usize>(
         if last <= tolerance && moments_met {
             Acceptance::Done
         } else if ahead
+            && moments_met
             && options.accept_rounding_floor
             && last <= rounding_floor(system, &x[..k]) / hmax
         {

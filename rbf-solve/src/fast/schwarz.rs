@@ -107,7 +107,8 @@ impl Local {
 /// saddle-point system [A, P; Pᵀ, 0] solved on the weights that meet the moment conditions
 /// (null-space method): with Q = [Q₁ Q₂] orthogonal and Q₁ spanning P, the weights for a
 /// residual r are w = Q₂ S⁻¹ Q₂ᵀ r, where S = Q₂ᵀ A Q₂ is definite (the kernel is conditionally
-/// definite) and kept as its Cholesky factor. Only the leaf's weights are used. The factor costs a
+/// definite) and kept as its Cholesky factor (its diagonal raised a little where rounding
+/// leaves a nearly singular patch not quite definite). Only the leaf's weights are used. The factor costs a
 /// quarter of the flops of an LU of the saddle-point system at 512 rows (a seventh of an LU
 /// turned into the map from r to the leaf's weights), so wide subdomains are affordable: 10⁵ rows
 /// of the peers' surface problem at 768 rows take 11.1 s (14.1 s with LUs turned into maps).
@@ -132,12 +133,36 @@ impl Subdomain {
     /// columns an orthonormal basis of what they span of (1, x)); `None` if that fails (it shows
     /// as non-finite numbers).
     fn new<const D: usize>(system: &System<D>, rows: Vec<usize>, keep: usize) -> Option<Self> {
+        // Rounding may leave a nearly singular patch (near-duplicate points, no smoothing) not
+        // quite definite: it is factored again with its diagonal raised by 1e-10 of its largest
+        // entry (the preconditioner only needs to approximate).
+        let (reflectors, diagonal, lower, scale) =
+            Self::factor(system, &rows, 0.0).or_else(|| Self::factor(system, &rows, 1e-10))?;
+        Some(Self {
+            rows,
+            keep,
+            reflectors,
+            diagonal,
+            lower,
+            scale,
+        })
+    }
+
+    /// The reflectors, the factor's diagonal and lower part, and the weights' scale of the rows'
+    /// system with σS's diagonal raised by `shift` of its largest entry; `None` if Cholesky finds
+    /// it not definite or the numbers are not finite.
+    #[allow(clippy::type_complexity)]
+    fn factor<const D: usize>(
+        system: &System<D>,
+        rows: &[usize],
+        shift: f64,
+    ) -> Option<(Vec<(f64, Vec<f64>)>, Vec<f64>, Vec<f32>, f64)> {
         let m = rows.len();
-        let (points, scale_beta) = local_points(system, &rows, true);
+        let (points, scale_beta) = local_points(system, rows, true);
         let basis = orthonormal_affine_basis(&points);
         let poly = basis.len();
         let sigma = system.kernel().definiteness();
-        let mut a = kernel_block(system, &rows, &points, scale_beta);
+        let mut a = kernel_block(system, rows, &points, scale_beta);
         let mut p = Mat::<f64>::from_fn(m, poly, |i, j| basis[j][i]);
         let reflectors = householder(&mut p);
         project(&mut a, &reflectors);
@@ -150,13 +175,12 @@ impl Subdomain {
                 }
             }
         }
-        // Rounding may leave a pivot of a nearly singular patch at or below zero: it is raised
-        // to a small positive value (the preconditioner only needs to approximate).
-        let largest = (0..n).map(|i| s[(i, i)].abs()).fold(0.0, f64::max);
-        let regularization = LltRegularization {
-            dynamic_regularization_delta: 1e-10 * largest,
-            dynamic_regularization_epsilon: 1e-13 * largest,
-        };
+        if shift > 0.0 {
+            let largest = (0..n).map(|i| s[(i, i)].abs()).fold(0.0, f64::max);
+            for i in 0..n {
+                s[(i, i)] += shift * largest;
+            }
+        }
         let mut scratch = MemBuffer::new(cholesky_in_place_scratch::<f64>(
             n,
             Par::Seq,
@@ -164,7 +188,7 @@ impl Subdomain {
         ));
         cholesky_in_place(
             s.as_mut(),
-            regularization,
+            LltRegularization::default(),
             Par::Seq,
             MemStack::new(&mut scratch),
             Default::default(),
@@ -178,14 +202,7 @@ impl Subdomain {
         }
         let finite = diagonal.iter().all(|v| v.is_finite() && *v > 0.0)
             && lower.iter().all(|v| v.is_finite());
-        finite.then_some(Self {
-            rows,
-            keep,
-            reflectors,
-            diagonal,
-            lower,
-            scale: sigma / scale_beta,
-        })
+        finite.then_some((reflectors, diagonal, lower, sigma / scale_beta))
     }
 
     /// The kept rows' weights for the residual `h` (whole-system length, read at the rows).
@@ -853,6 +870,31 @@ mod tests {
         // The factor is kept in single precision: the solve is that accurate (values near 1;
         // measured 1.1e-7), and a wrong one would leave values of their own size.
         assert!(worst < 1e-5, "{worst:e}");
+    }
+
+    #[test]
+    fn a_nearly_singular_subdomain_is_still_factored() {
+        // Two points 3e-9 apart, near the smallest separation `System::new` accepts (2e-9
+        // here): the subdomain is still factored and gives finite weights that meet the moment
+        // conditions (measured: Cholesky succeeds without the raised diagonal even here).
+        let mut constraints: Vec<Constraint<3>> = (0..40)
+            .map(|i| {
+                let t = i as f64 * 2.399_963;
+                let z = 1.0 - 2.0 * (i as f64 + 0.5) / 40.0;
+                let r = (1.0 - z * z).sqrt();
+                Constraint::interior([r * t.cos(), r * t.sin(), z], 1.0 + 0.1 * z)
+            })
+            .collect();
+        let p = constraints[3].position;
+        constraints.push(Constraint::interior([p[0] + 3e-9, p[1], p[2]], 1.05));
+        let system = System::new(&constraints, &FitSettings::default()).unwrap();
+        let rows: Vec<usize> = (0..41).collect();
+        let subdomain = Subdomain::new(&system, rows, 41).expect("factored");
+        let w = subdomain.solve(system.values());
+        assert!(w.iter().all(|v| v.is_finite()));
+        let scale = w.iter().map(|v| v.abs()).sum::<f64>();
+        let moment: f64 = w.iter().sum();
+        assert!(moment.abs() <= 1e-9 * scale, "{moment:e}");
     }
 
     #[test]
