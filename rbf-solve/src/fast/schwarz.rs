@@ -327,20 +327,18 @@ fn project(a: &mut Mat<f64>, reflectors: &[(f64, Vec<f64>)]) {
     let g: Vec<Vec<f64>> = (0..q)
         .map(|r| (0..q).map(|c| dot(v(r), &w[c])).collect())
         .collect();
-    let gt: Vec<Vec<f64>> = (0..q)
-        .map(|r| {
-            (0..q)
-                .map(|c| (0..q).map(|k| g[r][k] * t[k][c]).sum())
-                .collect()
-        })
-        .collect();
-    let mm: Vec<Vec<f64>> = (0..q)
-        .map(|r| {
-            (0..q)
-                .map(|c| (0..q).map(|k| t[k][r] * gt[k][c]).sum())
-                .collect()
-        })
-        .collect();
+    // (A B)[r][c] = Σₖ a(r, k) B[k][c] for q × q matrices.
+    let times = |a: &dyn Fn(usize, usize) -> f64, b: &[Vec<f64>]| -> Vec<Vec<f64>> {
+        (0..q)
+            .map(|r| {
+                (0..q)
+                    .map(|c| (0..q).map(|k| a(r, k) * b[k][c]).sum())
+                    .collect()
+            })
+            .collect()
+    };
+    let gt = times(&|r, k| g[r][k], &t);
+    let mm = times(&|r, k| t[k][r], &gt);
     let x: Vec<Vec<f64>> = (0..q)
         .map(|c| {
             (0..m)
