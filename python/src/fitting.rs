@@ -89,14 +89,9 @@ where
         method: rows.method,
         iterative: IterativeOptions {
             allow_unconverged: rows.allow_unconverged,
-            accept_rounding_floor: !rows.explicit_limit,
-            far_field_limit: if rows.explicit_limit {
-                None
-            } else {
-                IterativeOptions::default().far_field_limit
-            },
             ..Default::default()
-        },
+        }
+        .with_limit_given(rows.explicit_limit),
         ..FitOptions::default()
     };
     let fit = py.detach(|| rbf_solve::fit_with(&constraints, &settings, &options, |_| {}));
@@ -165,7 +160,7 @@ pub(crate) fn _fit(
         )));
     }
     if let Some(r) = max_residual
-        && !(r.is_finite() && r >= 1e-15)
+        && !FitSettings::max_residual_is_valid(r)
     {
         return Err(bad(format!(
             "max_residual must be a finite fraction of max|h| ≥ 1e-15 (double precision cannot certify less), not {r}"

@@ -206,7 +206,7 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
     }
     settings.min_separation = args.min_separation;
     if let Some(r) = args.max_residual {
-        if !(r.is_finite() && r >= 1e-15) {
+        if !FitSettings::max_residual_is_valid(r) {
             return Err(Failure::new(
                 USAGE,
                 format!(
@@ -269,16 +269,9 @@ pub(crate) fn run(args: &FitArgs, quiet: bool, verbose: bool) -> Result<(), Fail
             } else {
                 IterativeOptions::default().relaxed_rows
             },
-            // A limit the user set is kept: missing it is an error, not a note, and it is not
-            // raised to the far field's.
-            accept_rounding_floor: args.max_residual.is_none(),
-            far_field_limit: if args.max_residual.is_none() {
-                IterativeOptions::default().far_field_limit
-            } else {
-                None
-            },
             ..Default::default()
-        },
+        }
+        .with_limit_given(args.max_residual.is_some()),
         greedy: GreedySettings {
             tolerance,
             max_constraints: usize::try_from(args.max_centres.unwrap_or(5000))

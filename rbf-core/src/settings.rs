@@ -26,7 +26,8 @@ pub struct FitSettings {
     /// coincident, an error. 1e-9 by default.
     pub min_separation: f64,
     /// The largest accepted residual max|f(cᵢ) + λᵢwᵢ − hᵢ| relative to max|hᵢ|; a fit that
-    /// cannot reach it is reported as ill-conditioned instead of returned. 1e-6 by default.
+    /// cannot reach it is reported as ill-conditioned instead of returned. 1e-6 by default;
+    /// finite and at least [`FitSettings::SMALLEST_MAX_RESIDUAL`].
     pub max_residual: f64,
 }
 
@@ -43,6 +44,22 @@ impl Default for FitSettings {
 }
 
 impl FitSettings {
+    /// The smallest `max_residual` accepted: a relative residual below about 5ε cannot be
+    /// measured, let alone met.
+    pub const SMALLEST_MAX_RESIDUAL: f64 = 1e-15;
+
+    /// Whether `r` is an acceptable `max_residual`: finite and at least
+    /// [`Self::SMALLEST_MAX_RESIDUAL`].
+    ///
+    /// ```
+    /// use rbf_core::FitSettings;
+    /// assert!(FitSettings::max_residual_is_valid(1e-6));
+    /// assert!(!FitSettings::max_residual_is_valid(0.0) && !FitSettings::max_residual_is_valid(f64::NAN));
+    /// ```
+    pub fn max_residual_is_valid(r: f64) -> bool {
+        r.is_finite() && r >= Self::SMALLEST_MAX_RESIDUAL
+    }
+
     /// The kernel used in `dim` dimensions.
     pub const fn kernel_for(&self, dim: usize) -> Kernel {
         match self.kernel {

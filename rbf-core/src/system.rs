@@ -396,8 +396,7 @@ fn check_each<const D: usize>(
             rule: "λ must be finite and ≥ 0",
         });
     }
-    // A relative residual below about 5ε cannot be measured, let alone met.
-    if !(settings.max_residual.is_finite() && settings.max_residual >= 1e-15) {
+    if !FitSettings::max_residual_is_valid(settings.max_residual) {
         return Err(FitError::InvalidSetting {
             name: "max_residual",
             value: settings.max_residual,

@@ -78,6 +78,30 @@ impl Default for IterativeOptions {
     }
 }
 
+impl IterativeOptions {
+    /// These options for a caller that set `FitSettings::max_residual` itself (`given`): the
+    /// limit is then kept, neither raised to the far field's nor relaxed to a rounding floor
+    /// (missing it is an error); otherwise both stay as they are.
+    ///
+    /// ```
+    /// use rbf_solve::IterativeOptions;
+    /// let kept = IterativeOptions::default().with_limit_given(true);
+    /// assert!(kept.far_field_limit.is_none() && !kept.accept_rounding_floor);
+    /// assert_eq!(IterativeOptions::default().with_limit_given(false), IterativeOptions::default());
+    /// ```
+    pub fn with_limit_given(self, given: bool) -> Self {
+        if given {
+            Self {
+                far_field_limit: None,
+                accept_rounding_floor: false,
+                ..self
+            }
+        } else {
+            self
+        }
+    }
+}
+
 /// Where the iterative solver is, for progress bars.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum IterativeProgress {
@@ -219,6 +243,8 @@ pub fn solve_iterative<const D: usize>(
     // The residual last halved at this iteration.
     let (mut best, mut improved_at, mut checks_since) = (f64::INFINITY, 0, 0);
     let mut stalled = false;
+    // The rounding floor of the iterate the solve stopped at, where it stopped for that.
+    let mut floor_at_stop: Option<f64> = None;
     // The best iterate checked, and whether the recurrence ran ahead of the truth at the last
     // check (claimed a tenth of it or less).
     let mut kept: Option<(f64, Vec<f64>)> = None;
@@ -259,17 +285,18 @@ pub fn solve_iterative<const D: usize>(
         }
         let was_ahead = ahead;
         ahead = claimed <= 0.1 * rh;
-        if last <= tolerance && moments_met {
+        let done = last <= tolerance && moments_met;
+        // The rounding floor, measured only where the recurrence ran ahead of the truth.
+        let floor = (!done && ahead && moments_met && options.accept_rounding_floor)
+            .then(|| rounding_floor(system, &x[..k]) / hmax);
+        if done {
             Acceptance::Done
-        } else if ahead
-            && moments_met
-            && options.accept_rounding_floor
-            && last <= rounding_floor(system, &x[..k]) / hmax
-        {
+        } else if let Some(floor) = floor.filter(|&f| last <= f) {
             // The recurrence ran ahead of a measured residual that rounding alone explains: no
             // iteration can lower it, with relaxed products or exact ones (on normal
             // constraints of a real bust this ends the solve 10–24 iterations sooner).
             stalled = true;
+            floor_at_stop = Some(floor);
             Acceptance::GiveUp
         } else if std::mem::take(&mut refined) {
             // The products changed: a new cycle from this iterate's residual measured with them
@@ -327,6 +354,7 @@ pub fn solve_iterative<const D: usize>(
         && residual < last
     {
         (last, end.x) = (residual, x);
+        floor_at_stop = None;
     }
     // Stopped short of the tolerance (when one below the limit was asked for) but within the limit:
     // as good as a dense solve would have been allowed to be.
@@ -335,7 +363,7 @@ pub fn solve_iterative<const D: usize>(
     if !end.converged && !good_enough && stalled && options.accept_rounding_floor {
         // Stalled above the limit: if that is where double precision leaves products of these
         // weights, no solver does better; accept, and say so.
-        let floor = rounding_floor(system, &end.x[..k]) / hmax;
+        let floor = floor_at_stop.unwrap_or_else(|| rounding_floor(system, &end.x[..k]) / hmax);
         if last <= floor {
             (progress.borrow_mut())(IterativeProgress::RoundingFloor {
                 residual: last,
