@@ -102,7 +102,7 @@ impl<const D: usize> System<D> {
         self.accept_measured(settings, solution, |interpolant| {
             let mut fx = alloc::vec![0.0; self.rows()];
             #[cfg(feature = "rayon")]
-            let evaluated = interpolant.view().par_values_compensated(self.points(), &mut fx);
+            let evaluated = interpolant.view().par_values_at_centres(&mut fx);
             #[cfg(not(feature = "rayon"))]
             let evaluated = interpolant.view().values(self.points(), &mut fx);
             if evaluated.is_err() {

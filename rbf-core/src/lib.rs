@@ -65,6 +65,8 @@ pub mod vec3;
 
 #[cfg(feature = "rayon")]
 mod parallel;
+#[cfg(feature = "rayon")]
+mod symmetric;
 
 pub use bound::BallBound;
 pub use field::ScalarField;

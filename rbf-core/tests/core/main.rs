@@ -7,3 +7,5 @@ mod model_file;
 mod precision;
 mod properties;
 mod support;
+#[cfg(feature = "rayon")]
+mod symmetric;

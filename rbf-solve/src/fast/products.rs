@@ -197,7 +197,7 @@ impl<'a, const D: usize> Products<'a, D> {
             None => {
                 let linear: [f64; D] = core::array::from_fn(|d| c[d + 1]);
                 let evaluated = InterpolantView::new(system.kernel(), points, w, c[0], linear)
-                    .and_then(|f| f.par_values_compensated(points, &mut out[..k]));
+                    .and_then(|f| f.par_values_at_centres(&mut out[..k]));
                 if evaluated.is_err() {
                     out.fill(f64::NAN);
                     return;
