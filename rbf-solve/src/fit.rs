@@ -192,7 +192,7 @@ fn residual<const D: usize>(system: &System<D>, w: &[f64], p: &[f64]) -> (Vec<f6
     let f = system.normalized_interpolant(w, p);
     let points = system.normalized_points();
     let mut fx = vec![0.0; points.len()];
-    if f.view().par_values_at_centres(&mut fx).is_err() {
+    if f.view().par_values(points, &mut fx).is_err() {
         fx.fill(f64::NAN);
     }
     let rh: Vec<f64> = (0..points.len())

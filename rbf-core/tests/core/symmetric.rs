@@ -7,8 +7,9 @@ use rbf_core::{InterpolantView, Kernel};
 use crate::support::kernel;
 
 fn cloud<const D: usize>() -> impl Strategy<Value = (Vec<[f64; D]>, Vec<f64>)> {
-    // Sizes across the lane (8) and tile (512) boundaries, a ragged last tile included.
-    prop_oneof![1usize..20, 500usize..530, 1000usize..1300].prop_flat_map(|n| {
+    // Sizes across the lane (8) and tile (512) boundaries, a ragged last tile included, and
+    // below 2048 centres, where the plain compensated sums serve.
+    prop_oneof![1usize..20, 2040usize..2100, 2500usize..2600].prop_flat_map(|n| {
         (
             prop::collection::vec(prop::array::uniform::<_, D>(-1.0..1.0f64), n),
             prop::collection::vec(-1.0..1.0f64, n),
@@ -43,7 +44,7 @@ fn agrees<const D: usize>(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(ProptestConfig::with_cases(12))]
 
     #[test]
     fn every_row_matches_the_direct_sums_in_3d((points, weights) in cloud::<3>(), k in kernel()) {
