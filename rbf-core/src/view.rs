@@ -237,8 +237,12 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
     fn values_dispatch(&self, points: &[[T; D]], out: &mut [T]) {
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
         {
-            if std::is_x86_feature_detected!("avx512f") {
-                // SAFETY: the CPU supports AVX-512F, checked just above.
+            if std::is_x86_feature_detected!("avx512f")
+                && std::is_x86_feature_detected!("avx512vl")
+                && std::is_x86_feature_detected!("avx2")
+                && std::is_x86_feature_detected!("fma")
+            {
+                // SAFETY: the CPU supports every feature the function enables, checked above.
                 unsafe { self.values_avx512(points, out) };
                 return;
             }
@@ -328,8 +332,12 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
         LengthMismatch::check("gradients", points.len(), gradients.len())?;
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
         {
-            if std::is_x86_feature_detected!("avx512f") {
-                // SAFETY: the CPU supports AVX-512F, checked just above.
+            if std::is_x86_feature_detected!("avx512f")
+                && std::is_x86_feature_detected!("avx512vl")
+                && std::is_x86_feature_detected!("avx2")
+                && std::is_x86_feature_detected!("fma")
+            {
+                // SAFETY: the CPU supports every feature the function enables, checked above.
                 unsafe { self.gradients_avx512(points, values, gradients) };
                 return Ok(());
             }

@@ -7,9 +7,9 @@ use rbf_core::{InterpolantView, Kernel};
 use crate::support::kernel;
 
 fn cloud<const D: usize>() -> impl Strategy<Value = (Vec<[f64; D]>, Vec<f64>)> {
-    // Sizes across the lane (8) and tile (512) boundaries, a ragged last tile included, and
-    // below 2048 centres, where the plain compensated sums serve.
-    prop_oneof![1usize..20, 2040usize..2100, 2500usize..2600].prop_flat_map(|n| {
+    // Sizes from 2048 centres (below, the function is the reference itself), across the lane
+    // (8) and tile (512) boundaries, a ragged last tile included.
+    prop_oneof![2048usize..2100, 2500usize..2600].prop_flat_map(|n| {
         (
             prop::collection::vec(prop::array::uniform::<_, D>(-1.0..1.0f64), n),
             prop::collection::vec(-1.0..1.0f64, n),
@@ -18,7 +18,7 @@ fn cloud<const D: usize>() -> impl Strategy<Value = (Vec<[f64; D]>, Vec<f64>)> {
 }
 
 /// Every row against `par_values_compensated` at the centres, within a few ulps of the sum of
-/// the terms' sizes (|φ| ≤ 20 in the cube [−1, 1]^D for every kernel).
+/// the terms' sizes (|φ| ≤ 50 in the cube [−1, 1]^D for every kernel: r³ ≤ (2√3)³ ≈ 41.6).
 fn agrees<const D: usize>(
     points: &[[f64; D]],
     weights: &[f64],
@@ -30,7 +30,7 @@ fn agrees<const D: usize>(
     f.par_values_at_centres(&mut fast).expect("output length");
     f.par_values_compensated(points, &mut reference)
         .expect("output length");
-    let scale = 20.0 * weights.iter().map(|w| w.abs()).sum::<f64>() + 1.0;
+    let scale = 50.0 * weights.iter().map(|w| w.abs()).sum::<f64>() + 1.0;
     for i in 0..n {
         let err = (fast[i] - reference[i]).abs();
         prop_assert!(

@@ -464,11 +464,12 @@ pub fn check_iterative_fits(
     let coarse = (s.coarse.min(rows) + dim + 1) as u64;
     // The factors and a tenth more for the allocator, and on every core one subdomain's
     // kernel block being factored; the coarse level; two Krylov vectors per step of a restart
-    // cycle (measured peaks of the whole `rbf fit` on the peers' surface problem with the
+    // cycle, and the direct products' sums by shares of tiles (16 a row, rbf-core's
+    // `par_values_at_centres`) (measured peaks of the whole `rbf fit` on the peers' surface problem with the
     // default settings: 0.85 GB at 10⁵ rows, 0.72 GB by this estimate; 6.06 GB at 10⁶ rows,
     // 6.1 GB by this estimate).
     let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as u64;
-    let vectors = 2 * (options.restart as u64 + 2);
+    let vectors = 2 * (options.restart as u64 + 2) + 16;
     let numbers = kept.saturating_mul(11) / 10;
     let numbers = numbers
         .saturating_add(cores.saturating_mul((ext + dim as u64 + 1).pow(2)))

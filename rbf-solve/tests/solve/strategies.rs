@@ -91,16 +91,10 @@ fn the_report_is_honest() {
     let cs = sphere(400);
     let fit = solve(&cs, &FitSettings::default(), Strategy::Auto);
     let f = &fit.interpolant;
-    // The residual reported is the one measured here, on the returned interpolant, up to the
-    // rounding of the two measurements' sums (each pair of centres once in the fit's, every
-    // term in order here): about 1e-12 of max|h| on this system.
+    // The residual reported is the one measured here, on the returned interpolant.
     let system = System::new(&cs, &FitSettings::default()).unwrap();
     let measured = system.relative_residual(f);
-    assert!(
-        (fit.report.residual - measured).abs() <= 1e-3 * measured + 1e-11,
-        "reported {}, measured {measured}",
-        fit.report.residual
-    );
+    assert!((fit.report.residual - measured).abs() <= 1e-3 * measured.max(1e-16));
     assert!(fit.report.condition > 1.0 && fit.report.condition.is_finite());
     assert_eq!(fit.report.rows, 800);
 }
