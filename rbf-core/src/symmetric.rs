@@ -48,8 +48,8 @@ impl<const D: usize> InterpolantView<'_, f64, D> {
     ///     .unwrap();
     /// let mut out = [0.0; 3];
     /// f.par_values_at_centres(&mut out).unwrap();
-    /// // f(c₀) = 1 − 1 + 0.5·8 + 1 = 5
-    /// assert_eq!(out[0], 5.0);
+    /// // f(c₀) = 1·0³ − 1·1³ + 0.5·2³ + 1 = 4
+    /// assert_eq!(out[0], 4.0);
     /// ```
     pub fn par_values_at_centres(&self, out: &mut [f64]) -> Result<(), LengthMismatch> {
         let (centres, weights) = (self.centres(), self.weights());
