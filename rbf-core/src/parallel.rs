@@ -102,13 +102,7 @@ impl<const D: usize> InterpolantView<'_, f64, D> {
                     )?;
                     block.values(targets, &mut part)?;
                     for ((sum, c), &term) in o.iter_mut().zip(compensation.iter_mut()).zip(&part) {
-                        let t = *sum + term;
-                        *c += if sum.abs() >= term.abs() {
-                            (*sum - t) + term
-                        } else {
-                            (term - t) + *sum
-                        };
-                        *sum = t;
+                        neumaier(sum, c, term);
                     }
                 }
                 for ((v, c), x) in o.iter_mut().zip(&compensation).zip(targets) {
@@ -117,4 +111,16 @@ impl<const D: usize> InterpolantView<'_, f64, D> {
                 Ok(())
             })
     }
+}
+
+/// sum += term, with what rounding lost added to `compensation` (Neumaier's summation).
+#[inline(always)]
+pub(crate) fn neumaier(sum: &mut f64, compensation: &mut f64, term: f64) {
+    let t = *sum + term;
+    *compensation += if sum.abs() >= term.abs() {
+        (*sum - t) + term
+    } else {
+        (term - t) + *sum
+    };
+    *sum = t;
 }

@@ -9,6 +9,7 @@ use alloc::vec::Vec;
 use rayon::prelude::*;
 
 use crate::kernel::{Radial, with_radial};
+use crate::parallel::neumaier;
 use crate::{InterpolantView, LengthMismatch};
 
 /// Targets evaluated side by side (one AVX-512 register of doubles).
@@ -164,18 +165,6 @@ impl Compensated {
             neumaier(s, c, t);
         }
     }
-}
-
-/// sum += term, with what rounding lost added to `compensation`.
-#[inline(always)]
-fn neumaier(sum: &mut f64, compensation: &mut f64, term: f64) {
-    let t = *sum + term;
-    *compensation += if sum.abs() >= term.abs() {
-        (*sum - t) + term
-    } else {
-        (term - t) + *sum
-    };
-    *sum = t;
 }
 
 /// One tile: `rows` (the targets' lane groups) gain Σⱼ wⱼ φ(|tᵢ − cⱼ|) over the tile's centres,
