@@ -49,7 +49,7 @@ Methods (--method):
            Light & Billings 2000): O(K) memory; stops when max|f(cᵢ) − hᵢ| ≤ max|hᵢ| ×
            --max-residual, measured at every row, or fails (--allow-unconverged keeps the model with a warning);
            from 400 000 rows its products go through a far field whose claimed residual is
-           checked by direct sums at 2000 sampled rows; from 50 000 rows, once the residual is
+           checked by direct sums at 2000 sampled rows; from 175 000 rows, once the residual is
            small, products go through cheaper far fields (their error allowed to grow as the
            residual falls; true residuals stay exact; --exact turns both off)
   greedy   a subset of the constraints (--tolerance, --max-centres)";
@@ -103,7 +103,7 @@ pub(crate) struct FitArgs {
     #[arg(long)]
     allow_unconverged: bool,
     /// With the fast method: take every product by direct sums, however many rows (by default
-    /// from 400 000 rows they go through a far field, and from 50 000 rows the products of late
+    /// from 400 000 rows they go through a far field, and from 175 000 rows the products of late
     /// iterations, once the residual is small, through cheaper, less accurate ones).
     #[arg(long)]
     exact: bool,

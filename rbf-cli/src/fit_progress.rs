@@ -82,11 +82,17 @@ impl FitMessages {
             IterativeProgress::Checked {
                 iteration,
                 residual,
+                from_recurrence,
             } => {
                 if iteration == 0 {
                     self.solving = Instant::now();
                 }
-                format!("{rows} rows: iteration {iteration}, residual {residual:.1e}")
+                let how = if from_recurrence {
+                    " (the recurrence's, certified at sampled rows)"
+                } else {
+                    ""
+                };
+                format!("{rows} rows: iteration {iteration}, residual {residual:.1e}{how}")
             }
         }
     }

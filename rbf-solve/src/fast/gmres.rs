@@ -18,9 +18,20 @@ pub(crate) struct GmresLimits {
 /// out = A v, given what the product is for (see [`fgmres`]).
 pub(crate) type Operator<'a> = dyn Fn(&[f64], &mut [f64], Option<f64>) + Sync + 'a;
 
-/// The caller's verdict on an iterate x, given its true residual, the iterations so far and
-/// what the recurrence claimed for it (the largest entry of its residual vector).
-pub(crate) type Judge<'a> = dyn FnMut(&[f64], &[f64], usize, f64) -> Acceptance + 'a;
+/// The caller's verdict on an iterate x, given a residual of it (of the kind `Residual` says),
+/// the iterations so far and what the recurrence claimed for it (the largest entry of its
+/// residual vector).
+pub(crate) type Judge<'a> = dyn FnMut(&[f64], &[f64], usize, f64, Residual) -> Acceptance + 'a;
+
+/// What a residual given to the judge is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Residual {
+    /// b − A x by a product of the operator.
+    Measured,
+    /// The recurrence's residual vector: b − A x up to what the cycle's products erred, with no
+    /// product taken. The judge answers [`Acceptance::Done`] or [`Acceptance::Measure`].
+    Recurrence,
+}
 
 /// The end of a run.
 pub(crate) struct GmresEnd {
@@ -38,12 +49,14 @@ pub(crate) struct GmresEnd {
 ///   methods: Simoncini & Szyld, SIAM J. Sci. Comput. 25(2), 2003). `None` asks for a true
 ///   residual, which must be as exact as the caller can make it;
 /// - `precondition(v)`: an approximation of A⁻¹ v (it may change between calls);
-/// - `accept(x, r, iterations, claimed)`: given the iterate, its true residual r = b − A x, the
+/// - `accept(x, r, iterations, claimed, kind)`: given the iterate, a residual r of it, the
 ///   iterations so far and the recurrence's claim, says whether it is good enough; asked at
-///   the start, at every restart,
-///   and whenever the largest entry of the recurrence's residual vector falls below the
-///   `target` it last returned (lowered by how far the recurrence was from the truth at a
-///   refused check);
+///   the start and at every restart with the true residual r = b − A x, and whenever the
+///   largest entry of the recurrence's residual vector falls below the `target` it last
+///   returned (lowered by how far the recurrence was from the truth at a refused check): first
+///   with the recurrence's residual vector, which the judge may accept as it is (checked in
+///   its own way, for example by direct sums at sampled rows: a product saved), then, unless it
+///   did, with the true residual;
 /// - `progress(iteration, estimate)`: after every iteration, with the largest entry of the
 ///   recurrence's residual vector.
 pub(crate) fn fgmres(
@@ -68,9 +81,10 @@ pub(crate) fn fgmres(
         converged,
     };
     let initial = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
-    let mut target = match accept(&x, &r, iterations, initial) {
+    let mut target = match accept(&x, &r, iterations, initial, Residual::Measured) {
         Acceptance::Done => return end(x, iterations, true),
         Acceptance::GiveUp => return end(x, iterations, false),
+        Acceptance::Measure => f64::INFINITY,
         Acceptance::Continue { target }
         | Acceptance::Restart { target }
         | Acceptance::Remeasure { target } => target,
@@ -136,11 +150,18 @@ pub(crate) fn fgmres(
                 continue;
             }
             let xj = iterate(&x, &z, &h, &s);
+            if let Acceptance::Done =
+                accept(&xj, &estimate, iterations, largest, Residual::Recurrence)
+            {
+                return end(xj, iterations, true);
+            }
             apply(&xj, &mut scratch, None);
             let rj: Vec<f64> = b.par_iter().zip(&scratch).map(|(bi, ax)| bi - ax).collect();
-            match accept(&xj, &rj, iterations, largest) {
+            match accept(&xj, &rj, iterations, largest, Residual::Measured) {
                 Acceptance::Done => return end(xj, iterations, true),
                 Acceptance::GiveUp => return end(xj, iterations, false),
+                // Not an answer to a measured residual: go on as asked last.
+                Acceptance::Measure => {}
                 Acceptance::Continue { target: t } => {
                     target = t;
                     let truth = rj.iter().fold(0.0_f64, |a, r| a.max(r.abs()));
@@ -234,6 +255,9 @@ pub(crate) enum Acceptance {
     },
     /// Stop: the iterate will not get better (rounding has the last word).
     GiveUp,
+    /// To a residual of the recurrence: not accepted as it is; measure the true one and ask
+    /// again.
+    Measure,
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -295,7 +319,10 @@ mod tests {
             },
             &product,
             &|v| v.iter().map(|x| x / 4.0).collect(),
-            &mut |_, r, iterations, claimed| {
+            &mut |_, r, iterations, claimed, kind| {
+                if kind == Residual::Recurrence {
+                    return Acceptance::Measure;
+                }
                 let truth = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
                 if truth < 1e-10 {
                     Acceptance::Done
@@ -341,7 +368,10 @@ mod tests {
             },
             &apply,
             &|v| v.iter().map(|x| x / 4.0).collect(),
-            &mut |_, r, _, _| {
+            &mut |_, r, _, _, kind| {
+                if kind == Residual::Recurrence {
+                    return Acceptance::Measure;
+                }
                 checks += 1;
                 if norm(r) < 1e-12 * norm(&b) {
                     Acceptance::Done
@@ -383,7 +413,10 @@ mod tests {
             },
             &counted,
             &|v| v.iter().map(|x| x / 4.0).collect(),
-            &mut |_, r, iterations, claimed| {
+            &mut |_, r, iterations, claimed, kind| {
+                if kind == Residual::Recurrence {
+                    return Acceptance::Measure;
+                }
                 checks += 1;
                 let truth = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
                 worst_gap = worst_gap.max((truth - claimed).abs());
@@ -405,6 +438,54 @@ mod tests {
     }
 
     #[test]
+    fn a_recurrence_residual_taken_as_it_is_saves_the_check_product_and_holds() {
+        let n = 300;
+        let b: Vec<f64> = (0..n).map(|i| ((i * 5) % 11) as f64 - 5.0).collect();
+        let products = std::sync::atomic::AtomicUsize::new(0);
+        let counted = |v: &[f64], out: &mut [f64], residual: Option<f64>| {
+            products.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            apply(v, out, residual);
+        };
+        let mut kinds = Vec::new();
+        let end = fgmres(
+            &b,
+            &GmresLimits {
+                restart: 100,
+                max_iterations: 500,
+            },
+            &counted,
+            &|v| v.iter().map(|x| x / 4.0).collect(),
+            &mut |_, r, _, claimed, kind| {
+                kinds.push(kind);
+                let largest = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+                if kind == Residual::Recurrence {
+                    // What the judge is given is the recurrence's own vector.
+                    assert_eq!(largest, claimed);
+                }
+                if largest < 1e-10 {
+                    Acceptance::Done
+                } else {
+                    Acceptance::Continue { target: 1e-11 }
+                }
+            },
+            &mut |_, _| {},
+        );
+        assert!(end.converged);
+        assert_eq!(kinds, [Residual::Measured, Residual::Recurrence]);
+        // One product per iteration: none for the check.
+        let used = products.load(std::sync::atomic::Ordering::Relaxed);
+        assert_eq!(used, end.iterations);
+        let mut ax = vec![0.0; n];
+        apply(&end.x, &mut ax, None);
+        let truth = ax
+            .iter()
+            .zip(&b)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(truth < 1e-10, "{truth:e}");
+    }
+
+    #[test]
     fn stops_unconverged_at_the_iteration_cap() {
         let b = vec![1.0; 100];
         let end = fgmres(
@@ -415,7 +496,7 @@ mod tests {
             },
             &apply,
             &|v| v.to_vec(),
-            &mut |_, _, _, _| Acceptance::Continue { target: 0.0 },
+            &mut |_, _, _, _, _| Acceptance::Continue { target: 0.0 },
             &mut |_, _| {},
         );
         assert!(!end.converged);

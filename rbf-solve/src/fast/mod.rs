@@ -10,7 +10,7 @@ mod schwarz;
 use rbf_core::{Fit, FitError, FitSettings, Solution, SolveMethod, System};
 
 use crate::probe::memory_budget;
-use gmres::{Acceptance, GmresLimits, fgmres};
+use gmres::{Acceptance, GmresLimits, Residual, fgmres};
 use products::{FAR_FIELD_ROWS, Products, RELAXED_ROWS};
 use schwarz::Schwarz;
 pub use schwarz::SchwarzSettings;
@@ -41,7 +41,7 @@ pub struct IterativeOptions {
     pub far_field_rows: usize,
     /// Rows from which a Krylov product whose direction reduces an already small residual may
     /// go through a cheaper, less accurate far field (inexact Krylov), while the products are
-    /// direct sums (below `far_field_rows`); 50 000 by default. The
+    /// direct sums (below `far_field_rows`); 175 000 by default. The
     /// error allowed grows as the residual falls: a tenth of the tolerance over the relative
     /// residual. True residuals are still measured exactly.
     pub relaxed_rows: usize,
@@ -156,6 +156,10 @@ pub enum IterativeProgress {
         iteration: usize,
         /// The residual.
         residual: f64,
+        /// Whether it was taken from the recurrence's residual vector, within the tolerance
+        /// with twice its largest error at sampled rows (measured there by compensated direct
+        /// sums) to spare, instead of a product at every row.
+        from_recurrence: bool,
     },
 }
 
@@ -250,15 +254,40 @@ pub fn solve_iterative<const D: usize>(
     let mut kept: Option<(f64, Vec<f64>)> = None;
     let mut ahead = false;
     let mut refined = false;
-    let mut accept = |x: &[f64], r: &[f64], iteration: usize, claimed: f64| {
+    let mut accept = |x: &[f64], r: &[f64], iteration: usize, claimed: f64, kind: Residual| {
         let rh = r[..k].iter().fold(0.0_f64, |a, v| a.max(v.abs()));
         let rg = r[k..].iter().fold(0.0_f64, |a, v| a.max(v.abs()));
         let wsum: f64 = x[..k].iter().map(|v| v.abs()).sum();
+        let moments_met = rg <= (tolerance * hmax).max(64.0 * f64::EPSILON * wsum);
+        if kind == Residual::Recurrence {
+            // The recurrence's residual is b − A x up to what the cycle's products erred:
+            // rounding, or the far field's error, which direct sums at sampled rows measure
+            // (relaxed products take it off course: those are always measured). Within the
+            // tolerance with twice the largest error found there to spare, it is accepted as
+            // the fast residual at every row, certified at the sampled ones, and the product
+            // of a true residual is saved (1.5 s of 17 at 10⁵ rows of the peers' problem). The
+            // residual reported is that bound.
+            if products.counts().0 > 0 || !moments_met || rh > tolerance * hmax {
+                return Acceptance::Measure;
+            }
+            let certified = products.certify(x, &r[..k]);
+            let bound = (rh + 2.0 * certified.deviation).max(certified.residual);
+            if !(bound <= tolerance * hmax) {
+                return Acceptance::Measure;
+            }
+            last = bound / hmax;
+            (progress.borrow_mut())(IterativeProgress::Checked {
+                iteration,
+                residual: last,
+                from_recurrence: true,
+            });
+            return Acceptance::Done;
+        }
         last = rh / hmax;
         if products.is_far() {
             // The far field's residual, certified by direct sums at sampled rows; a far field
             // that misses what it claims there gives way to direct sums.
-            let certified = products.certify(x, &r[..k]) / hmax;
+            let certified = products.certify(x, &r[..k]).residual / hmax;
             if certified > tolerance.max(2.0 * last) {
                 let event = match products.refine(x) {
                     Some(order) => IterativeProgress::FarField { order },
@@ -272,8 +301,8 @@ pub fn solve_iterative<const D: usize>(
         (progress.borrow_mut())(IterativeProgress::Checked {
             iteration,
             residual: last,
+            from_recurrence: false,
         });
-        let moments_met = rg <= (tolerance * hmax).max(64.0 * f64::EPSILON * wsum);
         let halved = last < 0.5 * best;
         if halved {
             (best, improved_at, checks_since) = (last, iteration, 0);
