@@ -47,11 +47,12 @@ Methods (--method):
            near rounding, with a condition estimate
   fast     flexible GMRES preconditioned by overlapping subdomains and a coarse level (Beatson,
            Light & Billings 2000): O(K) memory; stops when max|f(cᵢ) − hᵢ| ≤ max|hᵢ| ×
-           --max-residual, measured at every row, or fails (--allow-unconverged keeps the model with a warning);
+           --max-residual (at every row by direct sums, or GMRES's own residual
+           certified at 2000 rows), or fails (--allow-unconverged keeps the model with a warning);
            from 400 000 rows its products go through a far field whose claimed residual is
            checked by direct sums at 2000 sampled rows; from 175 000 rows, once the residual is
            small, products go through cheaper far fields (their error allowed to grow as the
-           residual falls; true residuals stay exact; --exact turns both off)
+           residual falls; checks then take exact products; --exact turns both off)
   greedy   a subset of the constraints (--tolerance, --max-centres)";
 
 #[derive(Args, Debug)]
