@@ -80,6 +80,13 @@ fn wrong_format_or_version_is_rejected() {
     let e = read(&json.replace("\"version\": 1", "\"version\": 99")).unwrap_err();
     assert!(e.to_string().contains("version"), "{e}");
     assert!(matches!(read("{}"), Err(FileError::Format(_))));
+    // A format or version of the wrong type, and a file that is not an object.
+    let e = read(&json.replace("\"rbf-model\"", "7")).unwrap_err();
+    assert!(matches!(e, FileError::Format(_)), "{e}");
+    let e = read(&json.replace("\"version\": 1", "\"version\": \"1\"")).unwrap_err();
+    assert!(e.to_string().contains("whole number"), "{e}");
+    assert!(matches!(read("[1, 2]"), Err(FileError::Format(_))));
+    assert!(matches!(read("\"rbf-model\""), Err(FileError::Json { .. })));
 }
 
 #[test]
