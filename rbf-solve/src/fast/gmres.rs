@@ -300,6 +300,43 @@ mod tests {
         }
     }
 
+    /// A right-hand side of n entries with no structure the operator favours.
+    fn right_hand_side(n: usize) -> Vec<f64> {
+        (0..n).map(|i| ((i * 5) % 11) as f64 - 5.0).collect()
+    }
+
+    /// FGMRES on `apply` (restarts after 100, at most 500 iterations, Jacobi preconditioner)
+    /// with `accept` as the judge: the end, and how many products it took.
+    fn counted_run(b: &[f64], accept: &mut Judge<'_>) -> (GmresEnd, usize) {
+        let products = std::sync::atomic::AtomicUsize::new(0);
+        let counted = |v: &[f64], out: &mut [f64], residual: Option<f64>| {
+            products.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            apply(v, out, residual);
+        };
+        let end = fgmres(
+            b,
+            &GmresLimits {
+                restart: 100,
+                max_iterations: 500,
+            },
+            &counted,
+            &|v| v.iter().map(|x| x / 4.0).collect(),
+            accept,
+            &mut |_, _| {},
+        );
+        (end, products.into_inner())
+    }
+
+    /// max |b − A x| for the tridiagonal operator.
+    fn true_residual(x: &[f64], b: &[f64]) -> f64 {
+        let mut ax = vec![0.0; x.len()];
+        apply(x, &mut ax, None);
+        ax.iter()
+            .zip(b)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+    }
+
     /// Runs FGMRES on `apply` with products 1 % wrong for Krylov directions until the first
     /// check the recurrence runs ahead of, after which they are exact; the judge answers that
     /// check with `on_ahead`. Returns whether it converged to 1e-10 and the true residual.
@@ -339,13 +376,7 @@ mod tests {
             },
             &mut |_, _| {},
         );
-        let mut ax = vec![0.0; n];
-        apply(&end.x, &mut ax, None);
-        let truth = ax
-            .iter()
-            .zip(&b)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let truth = true_residual(&end.x, &b);
         (end.converged, truth)
     }
 
@@ -389,108 +420,62 @@ mod tests {
         );
         assert!(end.converged);
         assert!(checks > 2, "restarts happened");
-        let mut ax = vec![0.0; n];
-        apply(&end.x, &mut ax, None);
-        let err = ax
-            .iter()
-            .zip(&b)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let err = true_residual(&end.x, &b);
         assert!(err < 1e-10, "{err}");
     }
 
     #[test]
     fn the_recurrence_claims_the_true_residual_and_checks_cost_one_product_each() {
-        let n = 300;
-        let b: Vec<f64> = (0..n).map(|i| ((i * 5) % 11) as f64 - 5.0).collect();
-        let products = std::sync::atomic::AtomicUsize::new(0);
-        let counted = |v: &[f64], out: &mut [f64], residual: Option<f64>| {
-            products.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            apply(v, out, residual);
-        };
+        let b = right_hand_side(300);
         let (mut checks, mut worst_gap) = (0, 0.0_f64);
-        let end = fgmres(
-            &b,
-            &GmresLimits {
-                restart: 100,
-                max_iterations: 500,
-            },
-            &counted,
-            &|v| v.iter().map(|x| x / 4.0).collect(),
-            &mut |_, r, iterations, claimed, kind| {
-                if kind == Residual::Recurrence {
-                    return Acceptance::Measure;
-                }
-                checks += 1;
-                let truth = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
-                worst_gap = worst_gap.max((truth - claimed).abs());
-                // Refuse the first two checks after the start: the cycle must go on.
-                if iterations > 0 && checks > 3 && truth < 1e-10 {
-                    Acceptance::Done
-                } else {
-                    Acceptance::Continue { target: 1e-11 }
-                }
-            },
-            &mut |_, _| {},
-        );
+        let (end, used) = counted_run(&b, &mut |_, r, iterations, claimed, kind| {
+            if kind == Residual::Recurrence {
+                return Acceptance::Measure;
+            }
+            checks += 1;
+            let truth = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+            worst_gap = worst_gap.max((truth - claimed).abs());
+            // Refuse the first two checks after the start: the cycle must go on.
+            if iterations > 0 && checks > 3 && truth < 1e-10 {
+                Acceptance::Done
+            } else {
+                Acceptance::Continue { target: 1e-11 }
+            }
+        });
         assert!(end.converged);
         assert!(worst_gap < 1e-9, "recurrence off the truth by {worst_gap}");
         // One product per iteration and one per check after the start; no restart happened.
-        let used = products.load(std::sync::atomic::Ordering::Relaxed);
         assert_eq!(used, end.iterations + checks - 1);
         assert!(end.iterations < 100);
     }
 
     #[test]
     fn a_recurrence_residual_taken_as_it_is_saves_the_check_product_and_holds() {
-        let n = 300;
-        let b: Vec<f64> = (0..n).map(|i| ((i * 5) % 11) as f64 - 5.0).collect();
-        let products = std::sync::atomic::AtomicUsize::new(0);
-        let counted = |v: &[f64], out: &mut [f64], residual: Option<f64>| {
-            products.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            apply(v, out, residual);
-        };
+        let b = right_hand_side(300);
         let mut kinds = Vec::new();
-        let end = fgmres(
-            &b,
-            &GmresLimits {
-                restart: 100,
-                max_iterations: 500,
-            },
-            &counted,
-            &|v| v.iter().map(|x| x / 4.0).collect(),
-            &mut |x, r, _, claimed, kind| {
-                kinds.push(kind);
-                let largest = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
-                if kind == Residual::Recurrence {
-                    // The recurrence's own vector, and b − A x entry by entry.
-                    assert_eq!(largest, claimed);
-                    let mut ax = vec![0.0; x.len()];
-                    apply(x, &mut ax, None);
-                    for ((ri, bi), axi) in r.iter().zip(&b).zip(&ax) {
-                        assert!((ri - (bi - axi)).abs() < 1e-12, "{ri:e} {:e}", bi - axi);
-                    }
+        let (end, used) = counted_run(&b, &mut |x, r, _, claimed, kind| {
+            kinds.push(kind);
+            let largest = r.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+            if kind == Residual::Recurrence {
+                // The recurrence's own vector, and b − A x entry by entry.
+                assert_eq!(largest, claimed);
+                let mut ax = vec![0.0; x.len()];
+                apply(x, &mut ax, None);
+                for ((ri, bi), axi) in r.iter().zip(&b).zip(&ax) {
+                    assert!((ri - (bi - axi)).abs() < 1e-12, "{ri:e} {:e}", bi - axi);
                 }
-                if largest < 1e-10 {
-                    Acceptance::Done
-                } else {
-                    Acceptance::Continue { target: 1e-11 }
-                }
-            },
-            &mut |_, _| {},
-        );
+            }
+            if largest < 1e-10 {
+                Acceptance::Done
+            } else {
+                Acceptance::Continue { target: 1e-11 }
+            }
+        });
         assert!(end.converged);
         assert_eq!(kinds, [Residual::Measured, Residual::Recurrence]);
         // One product per iteration: none for the check.
-        let used = products.load(std::sync::atomic::Ordering::Relaxed);
         assert_eq!(used, end.iterations);
-        let mut ax = vec![0.0; n];
-        apply(&end.x, &mut ax, None);
-        let truth = ax
-            .iter()
-            .zip(&b)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let truth = true_residual(&end.x, &b);
         assert!(truth < 1e-10, "{truth:e}");
     }
 
