@@ -23,10 +23,12 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut exact = vec![0.0; targets.len()];
     let sums = InterpolantView::new(f.kernel(), c, w, 0.0, [0.0; 3])?;
     sums.par_values_compensated(&targets, &mut exact)?;
-    let t = Instant::now();
-    let mut direct = vec![0.0; c.len()];
-    sums.par_values(c, &mut direct)?;
-    println!("direct product: {:.2} s", t.elapsed().as_secs_f64());
+    if c.len() <= 300_000 {
+        let t = Instant::now();
+        let mut direct = vec![0.0; c.len()];
+        sums.par_values_at_centres(&mut direct)?;
+        println!("direct product: {:.2} s", t.elapsed().as_secs_f64());
+    }
     let wsum: f64 = w.iter().map(|x| x.abs()).sum();
     println!("K = {}, Σ|w| = {wsum:.3e}", c.len());
     for spec in args[1..].chunks_exact(3) {
@@ -46,13 +48,22 @@ fn main() -> Result<(), Box<dyn Error>> {
         let mut out = vec![0.0; c.len()];
         field.self_values(&charges, &mut out)?;
         let product = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        field.self_values(&charges, &mut out)?;
+        let again = t.elapsed().as_secs_f64();
+        if std::env::var("OLD").is_ok() {
+            let t = Instant::now();
+            let mut o2 = vec![0.0; c.len()];
+            field.values(&charges, c, &mut o2)?;
+            println!("treecode {:.2} s", t.elapsed().as_secs_f64());
+        }
         let worst = sample
             .iter()
             .zip(&exact)
             .map(|(&i, e)| (out[i] - e).abs())
             .fold(0.0, f64::max);
         println!(
-            "order {} θ {} leaf {}: build {build:.2} s, charges {charge:.2} s, product {product:.2} s, worst error {worst:.2e}",
+            "order {} θ {} leaf {}: build {build:.2} s, charges {charge:.2} s, first product {product:.2} s, next {again:.2} s, worst error {worst:.2e}",
             settings.order, settings.theta, settings.leaf
         );
     }

@@ -4,7 +4,7 @@
 use std::error::Error;
 use std::time::Instant;
 
-use rbf_core::Kernel;
+use rbf_core::{InterpolantView, Kernel};
 use rbf_far::{FarField, FarFieldSettings};
 
 fn main() -> Result<(), Box<dyn Error>> {
@@ -38,9 +38,24 @@ fn main() -> Result<(), Box<dyn Error>> {
     let t = Instant::now();
     let mut out = vec![0.0; n];
     field.self_values(&charges, &mut out)?;
+    let product = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    field.self_values(&charges, &mut out)?;
+    let again = t.elapsed().as_secs_f64();
+    let rows: Vec<usize> = (0..500).map(|i| i * n / 500).collect();
+    let at: Vec<[f64; 3]> = rows.iter().map(|&i| centres[i]).collect();
+    let mut exact = vec![0.0; rows.len()];
+    InterpolantView::new(Kernel::Cubic, &centres, &weights, 0.0, [0.0; 3])?
+        .par_values_compensated(&at, &mut exact)?;
+    let size = exact.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let error = rows
+        .iter()
+        .zip(&exact)
+        .fold(0.0_f64, |m, (&i, e)| m.max((out[i] - e).abs()));
     println!(
-        "N {n}: setup {setup:.2} s, product {:.2} s",
-        t.elapsed().as_secs_f64()
+        "N {n}: setup {setup:.2} s, first product {product:.2} s, next {again:.2} s, \
+         error {:.1e} of the largest value (500 rows)",
+        error / size
     );
     Ok(())
 }

@@ -54,6 +54,17 @@ impl Axis {
         }
     }
 
+    /// The matrix B (row-major, `at`'s length × this axis's length) with B[c][a] = ℓₐ(x_c), x_c
+    /// the points of `at`: it reads values on this axis's points off at `at`'s points.
+    pub fn basis_rows(&self, at: &Axis) -> Vec<f64> {
+        let n = self.points.len();
+        let mut b = vec![0.0; at.points.len() * n];
+        for (row, &x) in b.chunks_exact_mut(n).zip(&at.points) {
+            self.basis(x, row);
+        }
+        b
+    }
+
     /// The matrix A (row-major, this axis's length × `from`'s length) with A[a][i] = ℓₐ(xᵢ),
     /// xᵢ the points of `from`: it moves charges on `from`'s points to this axis's points.
     pub fn matrix_from(&self, from: &Axis) -> Vec<f64> {

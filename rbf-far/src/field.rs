@@ -8,8 +8,12 @@
 use rayon::prelude::*;
 use rbf_core::{InterpolantView, Kernel, LengthMismatch};
 
-use crate::chebyshev::Axis;
+use std::sync::OnceLock;
+
+use crate::clusters::{Clusters, side};
+use crate::dual::{Plan, Weighted, evaluate};
 use crate::settings::FarFieldSettings;
+use crate::tensor::{add_outer, grid_len, move_charges};
 use crate::tree::{Tree, box_gap2};
 
 /// The geometry of a far field over fixed centres: the tree, each cluster's Chebyshev grid and
@@ -37,16 +41,12 @@ use crate::tree::{Tree, box_gap2};
 pub struct FarField<const D: usize> {
     kernel: Kernel,
     settings: FarFieldSettings,
-    tree: Tree<D>,
+    /// The tree over the centres and each cluster's grid of proxies.
+    clusters: Clusters<D>,
     /// The centres in the tree's order.
     centres: Vec<[f64; D]>,
-    /// Each node's Chebyshev axes, or `None` where the node has no more centres than proxies
-    /// (its centres are then always summed directly).
-    grids: Vec<Option<[Axis; D]>>,
-    /// Each node's proxy points (empty without a grid), row-major over its axes.
-    proxies: Vec<Vec<[f64; D]>>,
-    /// Nodes by depth, the root's level first.
-    levels: Vec<Vec<usize>>,
+    /// The interactions of the product at the centres themselves, found on its first use.
+    self_plan: OnceLock<Plan>,
 }
 
 /// The weights of a [`FarField`]'s centres moved onto its proxies.
@@ -64,41 +64,12 @@ impl<const D: usize> FarField<D> {
         let tree = Tree::new(centres, settings.leaf);
         let sorted: Vec<[f64; D]> = tree.order.iter().map(|&i| centres[i]).collect();
         let root = tree.nodes.first().map_or(1.0, |n| side(&n.lo, &n.hi));
-        let grids: Vec<Option<[Axis; D]>> = tree
-            .nodes
-            .iter()
-            .map(|node| {
-                let order = settings.order_for(root, side(&node.lo, &node.hi));
-                let sizes = settings.grid_sizes(order, &node.lo, &node.hi);
-                let count: usize = sizes.iter().product();
-                (count < node.end - node.start)
-                    .then(|| core::array::from_fn(|d| Axis::new(node.lo[d], node.hi[d], sizes[d])))
-            })
-            .collect();
-        let proxies = grids
-            .iter()
-            .map(|g| g.as_ref().map_or_else(Vec::new, grid_points))
-            .collect();
-        let mut depth = vec![0usize; tree.nodes.len()];
-        let mut levels: Vec<Vec<usize>> = Vec::new();
-        for (i, node) in tree.nodes.iter().enumerate() {
-            if levels.len() <= depth[i] {
-                levels.push(Vec::new());
-            }
-            levels[depth[i]].push(i);
-            if let Some((a, b)) = node.children {
-                depth[a] = depth[i] + 1;
-                depth[b] = depth[i] + 1;
-            }
-        }
         Self {
             kernel,
             settings: *settings,
-            tree,
+            clusters: Clusters::over(tree, settings, root),
             centres: sorted,
-            grids,
-            proxies,
-            levels,
+            self_plan: OnceLock::new(),
         }
     }
 
@@ -123,12 +94,18 @@ impl<const D: usize> FarField<D> {
     /// A `weights` of another length than the centres is refused.
     pub fn charges(&self, weights: &[f64]) -> Result<Charges, LengthMismatch> {
         LengthMismatch::check("weights", self.len(), weights.len())?;
-        let sorted: Vec<f64> = self.tree.order.iter().map(|&i| weights[i]).collect();
-        let mut proxy: Vec<Vec<f64>> = vec![Vec::new(); self.tree.nodes.len()];
-        for level in self.levels.iter().rev() {
+        let sorted: Vec<f64> = self
+            .clusters
+            .tree
+            .order
+            .iter()
+            .map(|&i| weights[i])
+            .collect();
+        let mut proxy: Vec<Vec<f64>> = vec![Vec::new(); self.clusters.tree.nodes.len()];
+        for level in self.clusters.levels.iter().rev() {
             let computed: Vec<(usize, Vec<f64>)> = level
                 .par_iter()
-                .filter(|&&n| self.grids[n].is_some())
+                .filter(|&&n| self.clusters.grids[n].is_some())
                 .map(|&n| (n, self.node_charges(n, &sorted, &proxy)))
                 .collect();
             for (n, q) in computed {
@@ -144,32 +121,36 @@ impl<const D: usize> FarField<D> {
     /// Refuses charges made by another field (their lengths differ from this one's).
     fn check_charges(&self, charges: &Charges) -> Result<(), LengthMismatch> {
         LengthMismatch::check("charges", self.len(), charges.weights.len())?;
-        LengthMismatch::check("charges", self.tree.nodes.len(), charges.proxy.len())
+        LengthMismatch::check(
+            "charges",
+            self.clusters.tree.nodes.len(),
+            charges.proxy.len(),
+        )
     }
 
     /// Node `n`'s proxy charges from its children's (or its own centres where a child has no
     /// grid, or `n` is a leaf).
     fn node_charges(&self, n: usize, weights: &[f64], proxy: &[Vec<f64>]) -> Vec<f64> {
-        let Some(axes) = self.grids[n].as_ref() else {
+        let Some(axes) = self.clusters.grids[n].as_ref() else {
             return Vec::new();
         };
         let mut q = vec![0.0; grid_len(axes)];
-        let node = &self.tree.nodes[n];
+        let node = &self.clusters.tree.nodes[n];
         let parts: Vec<usize> = match node.children {
             Some((a, b)) => vec![a, b],
             None => vec![n],
         };
         let mut basis: [Vec<f64>; D] = core::array::from_fn(|d| vec![0.0; axes[d].points().len()]);
         for part in parts {
-            match (&self.grids[part], part != n) {
+            match (&self.clusters.grids[part], part != n) {
                 (Some(child), true) => {
-                    let moved = interpolate_grid(axes, child, &proxy[part]);
+                    let moved = move_charges(axes, child, &proxy[part]);
                     for (a, b) in q.iter_mut().zip(moved) {
                         *a += b;
                     }
                 }
                 _ => {
-                    let p = &self.tree.nodes[part];
+                    let p = &self.clusters.tree.nodes[part];
                     for i in p.start..p.end {
                         for d in 0..D {
                             axes[d].basis(self.centres[i][d], &mut basis[d]);
@@ -252,27 +233,103 @@ impl<const D: usize> FarField<D> {
     }
 
     /// Σⱼ wⱼ φ(|cᵢ − cⱼ|) at every centre, in the caller's order: the product of the kernel
-    /// matrix with the weights, the targets grouped by the field's own leaves.
+    /// matrix with the weights, by a dual traversal of the field's tree with itself (its
+    /// interactions found on the first call and kept).
     pub fn self_values(&self, charges: &Charges, out: &mut [f64]) -> Result<(), LengthMismatch> {
         LengthMismatch::check("output", self.len(), out.len())?;
         self.check_charges(charges)?;
-        let leaves = self.tree.leaves();
-        let parts: Vec<(usize, Vec<f64>)> = leaves
-            .par_iter()
-            .map(|&leaf| {
-                let node = &self.tree.nodes[leaf];
-                let points = &self.centres[node.start..node.end];
-                let mut v = vec![0.0; points.len()];
-                self.leaf_values(charges, &node.lo, &node.hi, points, &mut v)?;
-                Ok((leaf, v))
-            })
-            .collect::<Result<_, LengthMismatch>>()?;
-        for (leaf, v) in parts {
-            for (&i, x) in self.tree.points_of(leaf).iter().zip(v) {
+        let plan = self
+            .self_plan
+            .get_or_init(|| Plan::new(&self.clusters, &self.clusters, self.settings.theta));
+        let sources = Weighted {
+            kernel: self.kernel,
+            clusters: &self.clusters,
+            centres: &self.centres,
+            weights: &charges.weights,
+            charges: &charges.proxy,
+        };
+        let leaves = self.clusters.tree.leaves();
+        for (start, v) in evaluate(plan, &self.clusters, &self.centres, &sources, &leaves)? {
+            for (&i, x) in self.clusters.tree.order[start..].iter().zip(v) {
                 out[i] = x;
             }
         }
         Ok(())
+    }
+
+    /// [`FarField::self_values`] at the centres `rows` only (indices in the caller's order;
+    /// `out[i]` for `rows[i]`), taking only the leaves that hold them. Rows out of range are
+    /// refused.
+    pub fn self_values_at(
+        &self,
+        charges: &Charges,
+        rows: &[usize],
+        out: &mut [f64],
+    ) -> Result<(), LengthMismatch> {
+        LengthMismatch::check("output", rows.len(), out.len())?;
+        self.check_charges(charges)?;
+        if let Some(&bad) = rows.iter().find(|&&r| r >= self.len()) {
+            return Err(LengthMismatch {
+                what: "rows",
+                expected: self.len(),
+                found: bad + 1,
+            });
+        }
+        let order = &self.clusters.tree.order;
+        let mut position = vec![0usize; order.len()];
+        for (p, &i) in order.iter().enumerate() {
+            position[i] = p;
+        }
+        let all = self.clusters.tree.leaves();
+        let nodes = &self.clusters.tree.nodes;
+        let leaf_of = |p: usize| all[all.partition_point(|&l| nodes[l].end <= p)];
+        let mut leaves: Vec<usize> = rows.iter().map(|&r| leaf_of(position[r])).collect();
+        leaves.sort_unstable();
+        leaves.dedup();
+        let plan = self
+            .self_plan
+            .get_or_init(|| Plan::new(&self.clusters, &self.clusters, self.settings.theta));
+        let sources = Weighted {
+            kernel: self.kernel,
+            clusters: &self.clusters,
+            centres: &self.centres,
+            weights: &charges.weights,
+            charges: &charges.proxy,
+        };
+        let mut at_position = vec![f64::NAN; order.len()];
+        for (start, v) in evaluate(plan, &self.clusters, &self.centres, &sources, &leaves)? {
+            at_position[start..start + v.len()].copy_from_slice(&v);
+        }
+        for (o, &r) in out.iter_mut().zip(rows) {
+            *o = at_position[position[r]];
+        }
+        Ok(())
+    }
+
+    /// About `count` rows (indices in the caller's order) at which to measure the product at
+    /// the centres cheaply: every centre of leaves spread over the tree (the product is taken a
+    /// leaf at a time, so whole leaves cost what single rows in them would).
+    pub fn sample_rows(&self, count: usize) -> Vec<usize> {
+        let leaves = self.clusters.tree.leaves();
+        if leaves.is_empty() {
+            return Vec::new();
+        }
+        // Leaves hold between half the leaf size and all of it: as many as hold `count` on
+        // average, spread evenly, then more from a second pass if they fell short.
+        let average = (self.len() / leaves.len()).max(1);
+        let wanted = count.div_ceil(average).clamp(1, leaves.len());
+        let mut taken = vec![false; leaves.len()];
+        let mut rows = Vec::new();
+        let spread = (0..wanted).map(|i| i * leaves.len() / wanted);
+        for i in spread.chain(0..leaves.len()) {
+            if rows.len() >= count {
+                break;
+            }
+            if !std::mem::replace(&mut taken[i], true) {
+                rows.extend_from_slice(self.clusters.tree.points_of(leaves[i]));
+            }
+        }
+        rows
     }
 
     fn leaf_values(
@@ -335,15 +392,18 @@ impl<const D: usize> FarField<D> {
         let mut near: Vec<(usize, usize)> = Vec::new();
         let mut far = Vec::new();
         // The root, unless there are no centres at all.
-        let mut stack: Vec<usize> = (0..self.tree.nodes.len().min(1)).collect();
+        let mut stack: Vec<usize> = (0..self.clusters.tree.nodes.len().min(1)).collect();
         while let Some(n) = stack.pop() {
-            let node = &self.tree.nodes[n];
-            let direct = match (&self.grids[n], node.children) {
+            let node = &self.clusters.tree.nodes[n];
+            let direct = match (&self.clusters.grids[n], node.children) {
                 (None, _) => true,
                 _ if side(&node.lo, &node.hi).powi(2)
                     <= theta2 * box_gap2(&node.lo, &node.hi, lo, hi) =>
                 {
-                    far.push((self.proxies[n].as_slice(), charges.proxy[n].as_slice()));
+                    far.push((
+                        self.clusters.proxies[n].as_slice(),
+                        charges.proxy[n].as_slice(),
+                    ));
                     false
                 }
                 (Some(_), Some((a, b))) => {
@@ -365,11 +425,6 @@ impl<const D: usize> FarField<D> {
             .chain(far)
             .collect()
     }
-}
-
-/// The longest side of the box [lo, hi].
-fn side<const D: usize>(lo: &[f64; D], hi: &[f64; D]) -> f64 {
-    (0..D).map(|d| hi[d] - lo[d]).fold(0.0, f64::max)
 }
 
 /// Orders tried by [`calibrated`], lowest first.
@@ -394,33 +449,11 @@ pub fn calibrated<const D: usize>(
     sample: &[[f64; D]],
     error: f64,
 ) -> Option<(FarField<D>, Charges, f64)> {
-    calibrated_above(kernel, centres, weights, sample, error, 0)
-}
-
-/// As [`calibrated`], trying only orders above `above` (a far field found less accurate than
-/// needed gives way to a higher order).
-///
-/// ```
-/// use rbf_core::Kernel;
-/// let centres: Vec<[f64; 3]> = (0..5000).map(|i| [i as f64 * 1e-3, (i % 7) as f64, 0.0]).collect();
-/// let weights = vec![1e-3; 5000];
-/// let sample = [[0.5, 0.5, 0.5], [3.0, -1.0, 2.0]];
-/// let (field, _, _) = rbf_far::calibrated_above(Kernel::Cubic, &centres, &weights, &sample, 1.0, 12).unwrap();
-/// assert_eq!(field.settings().order, 14);
-/// ```
-pub fn calibrated_above<const D: usize>(
-    kernel: Kernel,
-    centres: &[[f64; D]],
-    weights: &[f64],
-    sample: &[[f64; D]],
-    error: f64,
-    above: usize,
-) -> Option<(FarField<D>, Charges, f64)> {
     let mut exact = vec![0.0; sample.len()];
     InterpolantView::new(kernel, centres, weights, 0.0, [0.0; D])
         .and_then(|f| f.par_values_compensated(sample, &mut exact))
         .ok()?;
-    for order in ORDERS.into_iter().filter(|&o| o > above) {
+    for order in ORDERS {
         let settings = FarFieldSettings {
             order,
             ..FarFieldSettings::default()
@@ -432,6 +465,90 @@ pub fn calibrated_above<const D: usize>(
         }
     }
     None
+}
+
+/// The far field whose product at the centres (as the iterative solver takes it:
+/// [`FarField::self_values`]) errs at most `error` (absolute) on `weights` at the lowest order
+/// above `above`, measured against compensated direct sums at rows of whole leaves spread over
+/// the tree ([`FarField::sample_rows`], about `rows` of them); with that measured error. `None`
+/// if no order up to 16 is that accurate.
+///
+/// ```
+/// use rbf_core::Kernel;
+/// let centres: Vec<[f64; 3]> = (0..5000).map(|i| [i as f64 * 1e-3, (i % 7) as f64, 0.0]).collect();
+/// let weights = vec![1e-3; 5000];
+/// let (field, measured) = rbf_far::calibrated_product(Kernel::Cubic, &centres, &weights, 1e-8, 0, 500).unwrap();
+/// assert!(measured <= 1e-8 && field.settings().order >= 8);
+/// ```
+pub fn calibrated_product<const D: usize>(
+    kernel: Kernel,
+    centres: &[[f64; D]],
+    weights: &[f64],
+    error: f64,
+    above: usize,
+    rows: usize,
+) -> Option<(FarField<D>, f64)> {
+    let mut exact: Option<(Vec<usize>, Vec<f64>)> = None;
+    for order in ORDERS.into_iter().filter(|&o| o > above) {
+        let settings = FarFieldSettings {
+            order,
+            ..FarFieldSettings::default()
+        };
+        let field = FarField::new(kernel, centres, &settings);
+        // Every order has the same tree (its leaves' size is the same), so the same rows.
+        let (sample, sums) = match exact.take() {
+            Some(e) => e,
+            None => {
+                let sample = field.sample_rows(rows);
+                let points: Vec<[f64; D]> = sample.iter().map(|&i| centres[i]).collect();
+                let mut sums = vec![0.0; sample.len()];
+                InterpolantView::new(kernel, centres, weights, 0.0, [0.0; D])
+                    .and_then(|f| f.par_values_compensated(&points, &mut sums))
+                    .ok()?;
+                (sample, sums)
+            }
+        };
+        let measured = field.product_error(weights, &sample, &sums)?;
+        if measured <= error {
+            return Some((field, measured));
+        }
+        exact = Some((sample, sums));
+    }
+    None
+}
+
+impl<const D: usize> FarField<D> {
+    /// The largest error of the product at the centres on `weights` ([`FarField::self_values`])
+    /// at `rows` (the caller's order) against `exact` sums there; `None` on mismatched lengths.
+    ///
+    /// ```
+    /// use rbf_core::{InterpolantView, Kernel};
+    /// use rbf_far::{FarField, FarFieldSettings};
+    /// let centres: Vec<[f64; 3]> = (0..3000).map(|i| [i as f64 * 1e-3, (i % 7) as f64, 0.0]).collect();
+    /// let weights = vec![1e-3; 3000];
+    /// let field = FarField::new(Kernel::Cubic, &centres, &FarFieldSettings { order: 12, ..Default::default() });
+    /// let rows = field.sample_rows(300);
+    /// let at: Vec<[f64; 3]> = rows.iter().map(|&i| centres[i]).collect();
+    /// let mut exact = vec![0.0; rows.len()];
+    /// InterpolantView::new(Kernel::Cubic, &centres, &weights, 0.0, [0.0; 3]).unwrap()
+    ///     .values(&at, &mut exact).unwrap();
+    /// assert!(field.product_error(&weights, &rows, &exact).unwrap() < 1e-6);
+    /// ```
+    pub fn product_error(&self, weights: &[f64], rows: &[usize], exact: &[f64]) -> Option<f64> {
+        let charges = self.charges(weights).ok()?;
+        let mut approx = vec![0.0; rows.len()];
+        self.self_values_at(&charges, rows, &mut approx).ok()?;
+        if exact.len() != rows.len() {
+            return None;
+        }
+        Some(
+            approx
+                .iter()
+                .zip(exact)
+                .map(|(a, e)| (a - e).abs())
+                .fold(0.0, f64::max),
+        )
+    }
 }
 
 impl<const D: usize> FarField<D> {
@@ -470,71 +587,4 @@ impl<const D: usize> FarField<D> {
             .fold(0.0, f64::max);
         Some((charges, error))
     }
-}
-
-fn grid_len<const D: usize>(axes: &[Axis; D]) -> usize {
-    axes.iter().map(|a| a.points().len()).product()
-}
-
-/// The grid's points, row-major (the last axis fastest).
-fn grid_points<const D: usize>(axes: &[Axis; D]) -> Vec<[f64; D]> {
-    let mut out = vec![[0.0; D]];
-    for d in 0..D {
-        let mut next = Vec::with_capacity(out.len() * axes[d].points().len());
-        for p in &out {
-            for &x in axes[d].points() {
-                let mut q = *p;
-                q[d] = x;
-                next.push(q);
-            }
-        }
-        out = next;
-    }
-    out
-}
-
-/// q += w · basis[0] ⊗ basis[1] ⊗ … (row-major).
-fn add_outer<const D: usize>(basis: &[Vec<f64>; D], w: f64, q: &mut [f64]) {
-    let mut t = vec![w];
-    for b in basis {
-        let mut next = Vec::with_capacity(t.len() * b.len());
-        for &x in &t {
-            next.extend(b.iter().map(|&y| x * y));
-        }
-        t = next;
-    }
-    for (a, b) in q.iter_mut().zip(t) {
-        *a += b;
-    }
-}
-
-/// Charges on the grid `from` moved to the grid `to`: one axis at a time, q ← Aₐ q along axis d.
-fn interpolate_grid<const D: usize>(to: &[Axis; D], from: &[Axis; D], q: &[f64]) -> Vec<f64> {
-    let mut dims: [usize; D] = core::array::from_fn(|d| from[d].points().len());
-    let mut t = q.to_vec();
-    for d in 0..D {
-        let a = to[d].matrix_from(&from[d]);
-        let (m, n) = (to[d].points().len(), dims[d]);
-        let pre: usize = dims[..d].iter().product();
-        let post: usize = dims[d + 1..].iter().product();
-        let mut next = vec![0.0; pre * m * post];
-        for p in 0..pre {
-            for r in 0..m {
-                let out = &mut next[(p * m + r) * post..(p * m + r + 1) * post];
-                for i in 0..n {
-                    let coefficient = a[r * n + i];
-                    if coefficient == 0.0 {
-                        continue;
-                    }
-                    let src = &t[(p * n + i) * post..(p * n + i + 1) * post];
-                    for (o, s) in out.iter_mut().zip(src) {
-                        *o += coefficient * s;
-                    }
-                }
-            }
-        }
-        dims[d] = m;
-        t = next;
-    }
-    t
 }

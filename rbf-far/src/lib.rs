@@ -9,12 +9,15 @@
 #![warn(missing_docs)]
 
 mod chebyshev;
+mod clusters;
+mod dual;
 mod evaluator;
 mod field;
 mod settings;
+mod tensor;
 mod tree;
 
 pub use evaluator::{Evaluator, FAR_FIELD_CENTRES, Method, default_accuracy};
-pub use field::{Charges, FarField, calibrated, calibrated_above};
+pub use field::{Charges, FarField, calibrated, calibrated_product};
 pub use settings::FarFieldSettings;
 pub use tree::{Node, Tree, bounds, box_gap2, point_gap2};

@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{PoisonError, RwLock};
 
 use rbf_core::{InterpolantView, System};
-use rbf_far::{FarField, FarFieldSettings, calibrated, calibrated_above};
+use rbf_far::{FarField, FarFieldSettings, calibrated_product};
 
 /// Rows from which the far field is tried by default. The solver's accuracy takes order 12 on
 /// the peers' surface problem, where one far product costs about what compensated direct sums
@@ -28,6 +28,10 @@ pub(crate) const RELAXED_ROWS: usize = 175_000;
 /// 10⁵-row fit of the peers' surface problem (one product, 2 cores): 0.50 s at an error of 8e-3
 /// of max|h|, 0.75 s at 5e-4, 0.93 s at 4e-5, against 1.5 s by compensated direct sums.
 const RELAXED: [(usize, f64); 3] = [(10, 0.8), (12, 0.9), (12, 0.7)];
+
+/// Rows at which a far field's product is measured against compensated direct sums before it
+/// is used: every row of leaves spread over the tree.
+const CALIBRATION_ROWS: usize = 2 * CERTIFIED_ROWS;
 
 /// Rows at which direct sums certify a residual: the worst of the fast residual, and as many
 /// spread over the rows.
@@ -72,10 +76,16 @@ impl<'a, const D: usize> Products<'a, D> {
     /// values' units) at sampled rows; direct sums if no order is.
     pub(crate) fn far(system: &'a System<D>, trial: &[f64], accuracy: f64) -> Self {
         let points = system.normalized_points();
-        let sample = calibration_sample(points);
-        let field = calibrated(system.kernel(), points, trial, &sample, 0.25 * accuracy);
+        let field = calibrated_product(
+            system.kernel(),
+            points,
+            trial,
+            0.25 * accuracy,
+            0,
+            CALIBRATION_ROWS,
+        );
         Self {
-            far: RwLock::new(field.map(|(field, _, _)| field)),
+            far: RwLock::new(field.map(|(field, _)| field)),
             accuracy,
             ..Self::direct(system)
         }
@@ -91,17 +101,16 @@ impl<'a, const D: usize> Products<'a, D> {
     pub(crate) fn refine(&self, x: &[f64]) -> Option<usize> {
         let system = self.system;
         let points = system.normalized_points();
-        let sample = calibration_sample(points);
         let weights = &x[..points.len()];
-        let better = calibrated_above(
+        let better = calibrated_product(
             system.kernel(),
             points,
             weights,
-            &sample,
             0.5 * self.accuracy,
             self.order()?,
+            CALIBRATION_ROWS,
         )
-        .map(|(field, _, _)| field);
+        .map(|(field, _)| field);
         let order = better.as_ref().map(|f| f.settings().order);
         *self.far.write().unwrap_or_else(PoisonError::into_inner) = better;
         order
@@ -113,13 +122,12 @@ impl<'a, const D: usize> Products<'a, D> {
     pub(crate) fn relaxed(mut self, trial: &[f64], hmax: f64) -> Self {
         let system = self.system;
         let points = system.normalized_points();
-        let sample = calibration_sample(points);
-        let mut exact = vec![0.0; sample.len()];
-        let measured = InterpolantView::new(system.kernel(), points, trial, 0.0, [0.0; D])
-            .and_then(|f| f.par_values_compensated(&sample, &mut exact));
-        if measured.is_err() || !(hmax > 0.0) {
+        if !(hmax > 0.0) {
             return self;
         }
+        // Every far field here has the same tree (the leaves' size is the default), so the
+        // same sampled rows.
+        let mut exact: Option<(Vec<usize>, Vec<f64>)> = None;
         for (order, theta) in RELAXED {
             let settings = FarFieldSettings {
                 order,
@@ -127,7 +135,21 @@ impl<'a, const D: usize> Products<'a, D> {
                 ..FarFieldSettings::default()
             };
             let field = FarField::new(system.kernel(), points, &settings);
-            let Some((_, error)) = field.error_at(trial, &sample, &exact) else {
+            if exact.is_none() {
+                let rows = field.sample_rows(CALIBRATION_ROWS);
+                let at: Vec<[f64; D]> = rows.iter().map(|&i| points[i]).collect();
+                let mut sums = vec![0.0; rows.len()];
+                let measured = InterpolantView::new(system.kernel(), points, trial, 0.0, [0.0; D])
+                    .and_then(|f| f.par_values_compensated(&at, &mut sums));
+                if measured.is_err() {
+                    return self;
+                }
+                exact = Some((rows, sums));
+            }
+            let Some((rows, sums)) = exact.as_ref() else {
+                return self;
+            };
+            let Some(error) = field.product_error(trial, rows, sums) else {
                 continue;
             };
             let error = error / hmax;
@@ -270,14 +292,6 @@ pub(crate) struct Certified {
     pub(crate) residual: f64,
     /// The largest difference there between the true residual and the fast one.
     pub(crate) deviation: f64,
-}
-
-/// The rows where far fields are measured against direct sums: 2000 spread over all.
-fn calibration_sample<const D: usize>(points: &[[f64; D]]) -> Vec<[f64; D]> {
-    spread_rows(points.len(), 2 * CERTIFIED_ROWS)
-        .into_iter()
-        .map(|i| points[i])
-        .collect()
 }
 
 /// The affine part at p: c₀ + Σ c_{d+1} p_d.

@@ -551,7 +551,7 @@ enum Sums<const D: usize> {
     /// Directly, over these source points.
     Direct(Vec<[f64; D]>),
     /// Through this far field (which keeps the source points itself).
-    Far(FarField<D>),
+    Far(Box<FarField<D>>),
 }
 
 impl<const D: usize> Transfer<D> {
@@ -563,7 +563,11 @@ impl<const D: usize> Transfer<D> {
                 order: TRANSFER_ORDER,
                 ..FarFieldSettings::default()
             };
-            Sums::Far(FarField::new(system.kernel(), &source_points, &settings))
+            Sums::Far(Box::new(FarField::new(
+                system.kernel(),
+                &source_points,
+                &settings,
+            )))
         } else {
             Sums::Direct(source_points)
         };
