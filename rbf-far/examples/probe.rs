@@ -51,12 +51,6 @@ fn main() -> Result<(), Box<dyn Error>> {
         let t = Instant::now();
         field.self_values(&charges, &mut out)?;
         let again = t.elapsed().as_secs_f64();
-        if std::env::var("OLD").is_ok() {
-            let t = Instant::now();
-            let mut o2 = vec![0.0; c.len()];
-            field.values(&charges, c, &mut o2)?;
-            println!("treecode {:.2} s", t.elapsed().as_secs_f64());
-        }
         let worst = sample
             .iter()
             .zip(&exact)

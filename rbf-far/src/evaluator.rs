@@ -78,14 +78,11 @@ impl<'a, const D: usize> Evaluator<'a, D> {
         if k < FAR_FIELD_CENTRES || points.len() < SAMPLED_POINTS || !(accuracy > 0.0) {
             return direct;
         }
-        let sample: Vec<[f64; D]> = (0..SAMPLED_POINTS)
-            .map(|i| points[i * points.len() / SAMPLED_POINTS])
-            .collect();
         match calibrated(
             view.kernel(),
             view.centres(),
             view.weights(),
-            &sample,
+            points,
             0.5 * accuracy,
         ) {
             Some((field, charges, sampled_error)) => Self {

@@ -49,6 +49,17 @@ pub struct FarField<const D: usize> {
     self_plan: OnceLock<Plan>,
 }
 
+/// Targets from which [`FarField::values`] takes the dual traversal: below, few target
+/// clusters are large enough for a grid, and the treecode's leaves of 512 targets share their
+/// interaction lists more widely. On the weights of a 10⁵-centre fit of the peers' surface
+/// problem, at 368 000 points within 0.03 of the surface (the kind a render samples), the dual
+/// traversal with targets' grids one point finer took 3.6 s at order 10 and 6.7 s at order 12
+/// against 6.5 s and 8.9 s by the treecode, erring 7.0e-7 and 2.9e-9 (at 1000 of them, against
+/// compensated direct sums) where the treecode erred 1.5e-6 and 7.4e-9; with targets' grids
+/// as fine as the sources', 4.2e-6 and 4.5e-8: the treecode's error at sampled points, which
+/// the evaluator measures, then understated it.
+pub(crate) const DUAL_TARGETS: usize = 4096;
+
 /// The weights of a [`FarField`]'s centres moved onto its proxies.
 #[derive(Clone, Debug)]
 pub struct Charges {
@@ -163,7 +174,10 @@ impl<const D: usize> FarField<D> {
         q
     }
 
-    /// Σⱼ wⱼ φ(|xᵢ − cⱼ|) at every target (no affine part).
+    /// Σⱼ wⱼ φ(|xᵢ − cⱼ|) at every target (no affine part): by the treecode (each leaf of
+    /// targets sums its near centres and far proxies), or from 4096 targets by a dual traversal
+    /// of a tree over the targets with the field's own, far sums taken on grids over clusters
+    /// of targets and interpolated to them.
     pub fn values(
         &self,
         charges: &Charges,
@@ -172,6 +186,9 @@ impl<const D: usize> FarField<D> {
     ) -> Result<(), LengthMismatch> {
         LengthMismatch::check("output", targets.len(), out.len())?;
         self.check_charges(charges)?;
+        if targets.len() >= DUAL_TARGETS {
+            return self.dual_values(charges, targets, out);
+        }
         let target_tree = Tree::new(targets, self.settings.target_leaf);
         let parts: Vec<(usize, Vec<f64>)> = target_tree
             .leaves()
@@ -193,7 +210,84 @@ impl<const D: usize> FarField<D> {
         Ok(())
     }
 
-    /// Σⱼ wⱼ φ(|xᵢ − cⱼ|) and its gradient at every target (no affine part).
+    /// The dual traversal's sums at the targets of the target `leaves` of `clusters` (a tree
+    /// over `sorted`, the targets in its order), as [`evaluate`] gives them.
+    fn dual_sums(
+        &self,
+        charges: &Charges,
+        clusters: &Clusters<D>,
+        sorted: &[[f64; D]],
+        leaves: &[usize],
+    ) -> Result<Vec<(usize, Vec<f64>)>, LengthMismatch> {
+        let plan = Plan::new(clusters, &self.clusters, self.settings.theta);
+        let sources = Weighted {
+            kernel: self.kernel,
+            clusters: &self.clusters,
+            centres: &self.centres,
+            weights: &charges.weights,
+            charges: &charges.proxy,
+        };
+        evaluate(&plan, clusters, sorted, &sources, leaves)
+    }
+
+    /// A tree over `targets` with grids one point finer per side than the sources' (measured:
+    /// see [`DUAL_TARGETS`]), and the targets in its order.
+    fn target_clusters(&self, targets: &[[f64; D]]) -> (Clusters<D>, Vec<[f64; D]>) {
+        let tree = Tree::new(targets, self.settings.leaf);
+        let sorted: Vec<[f64; D]> = tree.order.iter().map(|&i| targets[i]).collect();
+        let root = self
+            .clusters
+            .tree
+            .nodes
+            .first()
+            .map_or(1.0, |n| side(&n.lo, &n.hi));
+        let finer = FarFieldSettings {
+            order: self.settings.order + 1,
+            ..self.settings
+        };
+        (Clusters::over(tree, &finer, root), sorted)
+    }
+
+    /// [`FarField::values`] by a dual traversal of a tree over the targets with the field's own.
+    fn dual_values(
+        &self,
+        charges: &Charges,
+        targets: &[[f64; D]],
+        out: &mut [f64],
+    ) -> Result<(), LengthMismatch> {
+        let (clusters, sorted) = self.target_clusters(targets);
+        let leaves = clusters.tree.leaves();
+        for (start, v) in self.dual_sums(charges, &clusters, &sorted, &leaves)? {
+            for (&i, x) in clusters.tree.order[start..].iter().zip(v) {
+                out[i] = x;
+            }
+        }
+        Ok(())
+    }
+
+    /// The dual traversal's sums at about `count` of `targets` (every target of leaves spread
+    /// over a tree over them, as [`FarField::values`] takes all of them): which targets, and
+    /// the sums there.
+    fn dual_sample(
+        &self,
+        charges: &Charges,
+        targets: &[[f64; D]],
+        count: usize,
+    ) -> Result<(Vec<usize>, Vec<f64>), LengthMismatch> {
+        let (clusters, sorted) = self.target_clusters(targets);
+        let leaves = spread_leaves(&clusters.tree, count);
+        let mut rows = Vec::new();
+        let mut sums = Vec::new();
+        for (start, v) in self.dual_sums(charges, &clusters, &sorted, &leaves)? {
+            rows.extend_from_slice(&clusters.tree.order[start..start + v.len()]);
+            sums.extend(v);
+        }
+        Ok((rows, sums))
+    }
+
+    /// Σⱼ wⱼ φ(|xᵢ − cⱼ|) and its gradient at every target (no affine part), by the treecode
+    /// whatever their number (gradients read off target grids erred 20 times more, at order 10
+    /// on 7·10⁴ points near a 10⁵-centre model's surface, and took as long).
     pub fn values_and_gradients(
         &self,
         charges: &Charges,
@@ -310,26 +404,10 @@ impl<const D: usize> FarField<D> {
     /// the centres cheaply: every centre of leaves spread over the tree (the product is taken a
     /// leaf at a time, so whole leaves cost what single rows in them would).
     pub fn sample_rows(&self, count: usize) -> Vec<usize> {
-        let leaves = self.clusters.tree.leaves();
-        if leaves.is_empty() {
-            return Vec::new();
-        }
-        // Leaves hold between half the leaf size and all of it: as many as hold `count` on
-        // average, spread evenly, then more from a second pass if they fell short.
-        let average = (self.len() / leaves.len()).max(1);
-        let wanted = count.div_ceil(average).clamp(1, leaves.len());
-        let mut taken = vec![false; leaves.len()];
-        let mut rows = Vec::new();
-        let spread = (0..wanted).map(|i| i * leaves.len() / wanted);
-        for i in spread.chain(0..leaves.len()) {
-            if rows.len() >= count {
-                break;
-            }
-            if !std::mem::replace(&mut taken[i], true) {
-                rows.extend_from_slice(self.clusters.tree.points_of(leaves[i]));
-            }
-        }
-        rows
+        spread_leaves(&self.clusters.tree, count)
+            .into_iter()
+            .flat_map(|leaf| self.clusters.tree.points_of(leaf).iter().copied())
+            .collect()
     }
 
     fn leaf_values(
@@ -430,42 +508,74 @@ impl<const D: usize> FarField<D> {
 /// Orders tried by [`calibrated`], lowest first.
 const ORDERS: [usize; 5] = [8, 10, 12, 14, 16];
 
-/// The far field of `weights` on `centres` at the lowest order whose largest error at the
-/// `sample` points, against compensated direct sums, is at most `error` (absolute); with its
-/// charges and that measured error. `None` if no order up to 16 is that accurate.
+/// The far field of `weights` on `centres` at the lowest order whose largest error at sampled
+/// `points`, against compensated direct sums, is at most `error` (absolute); with its charges
+/// and that measured error. Both ways [`FarField::values`] takes sums are measured: the
+/// treecode at up to 1000 points spread over `points`, and, from [`DUAL_TARGETS`] points, the
+/// dual traversal at every point of leaves spread over a tree over them (about 2000). `None`
+/// if no order up to 16 is that accurate.
 ///
 /// ```
 /// use rbf_core::Kernel;
 /// let centres: Vec<[f64; 3]> = (0..5000).map(|i| [i as f64 * 1e-3, (i % 7) as f64, 0.0]).collect();
 /// let weights = vec![1e-3; 5000];
-/// let sample = [[0.5, 0.5, 0.5], [3.0, -1.0, 2.0]];
-/// let (field, _, measured) = rbf_far::calibrated(Kernel::Cubic, &centres, &weights, &sample, 1e-8).unwrap();
+/// let points = [[0.5, 0.5, 0.5], [3.0, -1.0, 2.0]];
+/// let (field, _, measured) = rbf_far::calibrated(Kernel::Cubic, &centres, &weights, &points, 1e-8).unwrap();
 /// assert!(measured <= 1e-8 && field.settings().order >= 8);
 /// ```
 pub fn calibrated<const D: usize>(
     kernel: Kernel,
     centres: &[[f64; D]],
     weights: &[f64],
-    sample: &[[f64; D]],
+    points: &[[f64; D]],
     error: f64,
 ) -> Option<(FarField<D>, Charges, f64)> {
-    let mut exact = vec![0.0; sample.len()];
-    InterpolantView::new(kernel, centres, weights, 0.0, [0.0; D])
-        .and_then(|f| f.par_values_compensated(sample, &mut exact))
-        .ok()?;
+    let exact = |at: &[[f64; D]]| {
+        let mut sums = vec![0.0; at.len()];
+        InterpolantView::new(kernel, centres, weights, 0.0, [0.0; D])
+            .and_then(|f| f.par_values_compensated(at, &mut sums))
+            .ok()
+            .map(|_| sums)
+    };
+    let spread = SPREAD_POINTS.min(points.len());
+    let sample: Vec<[f64; D]> = (0..spread)
+        .map(|i| points[i * points.len() / spread])
+        .collect();
+    let sample_sums = exact(&sample)?;
+    // The dual traversal's rows are the same at every order (the tree over the points is).
+    let mut dual: Option<(Vec<usize>, Vec<f64>)> = None;
     for order in ORDERS {
         let settings = FarFieldSettings {
             order,
             ..FarFieldSettings::default()
         };
         let field = FarField::new(kernel, centres, &settings);
-        let (charges, measured) = field.error_at(weights, sample, &exact)?;
+        let (charges, mut measured) = field.error_at(weights, &sample, &sample_sums)?;
+        if points.len() >= DUAL_TARGETS {
+            let (rows, approx) = field.dual_sample(&charges, points, DUAL_SAMPLE).ok()?;
+            if dual.is_none() {
+                let at: Vec<[f64; D]> = rows.iter().map(|&i| points[i]).collect();
+                dual = Some((rows, exact(&at)?));
+            }
+            let (_, sums) = dual.as_ref()?;
+            measured = approx
+                .iter()
+                .zip(sums)
+                .map(|(a, e)| (a - e).abs())
+                .fold(measured, f64::max);
+        }
         if measured <= error {
             return Some((field, charges, measured));
         }
     }
     None
 }
+
+/// Points at which [`calibrated`] measures the treecode.
+const SPREAD_POINTS: usize = 1000;
+
+/// About as many points at which [`calibrated`] measures the dual traversal (whole leaves).
+const DUAL_SAMPLE: usize = 2000;
 
 /// The far field whose product at the centres (as the iterative solver takes it:
 /// [`FarField::self_values`]) errs at most `error` (absolute) on `weights` at the lowest order
@@ -587,4 +697,30 @@ impl<const D: usize> FarField<D> {
             .fold(0.0, f64::max);
         Some((charges, error))
     }
+}
+
+/// Leaves spread evenly over `tree` holding at least `count` points between them (all of them if
+/// there are fewer).
+fn spread_leaves<const D: usize>(tree: &Tree<D>, count: usize) -> Vec<usize> {
+    let leaves = tree.leaves();
+    if leaves.is_empty() {
+        return Vec::new();
+    }
+    // Leaves hold between half the leaf size and all of it: as many as hold `count` on
+    // average, spread evenly, then more from a second pass if they fell short.
+    let average = (tree.order.len() / leaves.len()).max(1);
+    let wanted = count.div_ceil(average).clamp(1, leaves.len());
+    let mut taken = vec![false; leaves.len()];
+    let (mut chosen, mut held) = (Vec::new(), 0);
+    let spread = (0..wanted).map(|i| i * leaves.len() / wanted);
+    for i in spread.chain(0..leaves.len()) {
+        if held >= count {
+            break;
+        }
+        if !std::mem::replace(&mut taken[i], true) {
+            held += tree.points_of(leaves[i]).len();
+            chosen.push(leaves[i]);
+        }
+    }
+    chosen
 }

@@ -147,7 +147,8 @@ proptest! {
 
     /// The product at the centres, taken by the dual traversal (grids on the targets' side
     /// too), is within 1e-9 of what the sums cancel at order 12 and 1e-3 at order 8 on every
-    /// kind of cloud; taken at a few rows only, it is the same as taken at all.
+    /// kind of cloud; taken at a few rows only, it is the same as taken at all; and so are sums
+    /// at as many other points, which take the dual traversal with a tree over them.
     #[test]
     fn the_product_at_the_centres_matches_direct_sums(
         kind in prop::sample::select(vec![
@@ -177,6 +178,15 @@ proptest! {
                 let m = magnitude(kernel, &centres, &w, &centres[i]);
                 let error = (all[i] - direct.value(&centres[i])).abs() / m;
                 prop_assert!(error <= bound, "{kind:?} {kernel:?} order {order}, row {i}: {error:e}");
+            }
+            // As many other points: the dual traversal with a tree of its own over them.
+            let others: Vec<[f64; 3]> = centres.iter().map(|c| [c[0] + 1e-3, c[1] - 2e-3, c[2] + 1e-3]).collect();
+            let mut at_others = vec![0.0; n];
+            field.values(&charges, &others, &mut at_others).unwrap();
+            for i in (0..n).step_by(11) {
+                let m = magnitude(kernel, &centres, &w, &others[i]);
+                let error = (at_others[i] - direct.value(&others[i])).abs() / m;
+                prop_assert!(error <= bound, "{kind:?} {kernel:?} order {order}, point {i}: {error:e}");
             }
         }
     }
@@ -232,9 +242,16 @@ fn evaluator_meets_the_accuracy_at_every_point() {
     let centres = cloud(Cloud::Clustered, 25_000, 5);
     let w: Vec<f64> = weights(25_000, 5).iter().map(|x| x * 1e-3).collect();
     let f = InterpolantView::new(Kernel::Cubic, &centres, &w, 0.5, [1.0, -2.0, 0.25]).unwrap();
-    let points = cloud(Cloud::Random, 4000, 6);
+    // Few points go through the treecode, many through the dual traversal (and the treecode for
+    // gradients).
+    for n in [4000, 20_000] {
+        evaluator_meets_the_accuracy_at(f, &cloud(Cloud::Random, n, 6));
+    }
+}
+
+fn evaluator_meets_the_accuracy_at(f: InterpolantView<'_, f64, 3>, points: &[[f64; 3]]) {
     let accuracy = 1e-8;
-    let evaluator = Evaluator::new(f, &points, accuracy);
+    let evaluator = Evaluator::new(f, points, accuracy);
     assert!(
         matches!(evaluator.method(), Method::FarField { .. }),
         "{:?}",
@@ -242,19 +259,24 @@ fn evaluator_meets_the_accuracy_at_every_point() {
     );
     let (mut v, mut g) = (vec![0.0; points.len()], vec![[0.0; 3]; points.len()]);
     evaluator
-        .values_and_gradients(&points, &mut v, &mut g)
+        .values_and_gradients(points, &mut v, &mut g)
         .unwrap();
+    let mut alone = vec![0.0; points.len()];
+    evaluator.values(points, &mut alone).unwrap();
     let mut exact = vec![0.0; points.len()];
-    f.par_values_compensated(&points, &mut exact).unwrap();
-    let worst = v
-        .iter()
-        .zip(&exact)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
-    assert!(
-        worst <= accuracy,
-        "worst error {worst:e} above the accuracy {accuracy:e}"
-    );
+    f.par_values_compensated(points, &mut exact).unwrap();
+    for (kind, got) in [("with gradients", &v), ("alone", &alone)] {
+        let worst = got
+            .iter()
+            .zip(&exact)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            worst <= accuracy,
+            "{} points, values {kind}: worst error {worst:e} above the accuracy {accuracy:e}",
+            points.len()
+        );
+    }
     // The affine part is added to values and gradients.
     let (dv, dg) = f.value_and_gradient(&points[17]);
     assert!((v[17] - dv).abs() <= accuracy);
