@@ -48,6 +48,18 @@ impl Plan {
         sources: &Clusters<D>,
         theta: f64,
     ) -> Self {
+        Self::above(targets, sources, theta, &[])
+    }
+
+    /// As [`Plan::new`], for the targets of the target `leaves` only (all of them if empty):
+    /// pairs with a target cluster above none of them are dropped.
+    pub(crate) fn above<const D: usize>(
+        targets: &Clusters<D>,
+        sources: &Clusters<D>,
+        theta: f64,
+        leaves: &[usize],
+    ) -> Self {
+        let needed = needed_by(targets, leaves);
         let t_nodes = targets.tree.nodes.len();
         let mut plan = Self {
             at_targets: vec![Vec::new(); t_nodes],
@@ -60,6 +72,9 @@ impl Plan {
         let theta2 = theta * theta;
         let mut stack = vec![(0usize, 0usize)];
         while let Some((t, s)) = stack.pop() {
+            if !needed.is_empty() && !needed[t] {
+                continue;
+            }
             let (tn, sn) = (&targets.tree.nodes[t], &sources.tree.nodes[s]);
             let gap2 = box_gap2(&tn.lo, &tn.hi, &sn.lo, &sn.hi);
             let (t_side, s_side) = (targets.side(t), sources.side(s));
@@ -134,6 +149,22 @@ impl Plan {
     }
 }
 
+/// Whether each target cluster is a leaf of `leaves` or above one (empty: `leaves` is).
+fn needed_by<const D: usize>(targets: &Clusters<D>, leaves: &[usize]) -> Vec<bool> {
+    if leaves.is_empty() {
+        return Vec::new();
+    }
+    let mut needed = vec![false; targets.tree.nodes.len()];
+    for &leaf in leaves {
+        let mut at = Some(leaf);
+        while let Some(t) = at.filter(|&t| !needed[t]) {
+            needed[t] = true;
+            at = targets.parent[t];
+        }
+    }
+    needed
+}
+
 /// Sorts runs of centres and joins those that meet; proxies stay as they are.
 fn merge_runs(list: &mut Vec<Source>) {
     list.sort_unstable_by_key(|s| match *s {
@@ -200,14 +231,9 @@ pub(crate) fn evaluate<const D: usize>(
 ) -> Result<Vec<(usize, Vec<f64>)>, LengthMismatch> {
     let nodes = targets.tree.nodes.len();
     LengthMismatch::check("targets", targets.tree.order.len(), points.len())?;
-    // The clusters above the leaves asked for.
-    let mut needed = vec![false; nodes];
-    for &leaf in leaves {
-        let mut at = Some(leaf);
-        while let Some(t) = at.filter(|&t| !needed[t]) {
-            needed[t] = true;
-            at = targets.parent[t];
-        }
+    let mut needed = needed_by(targets, leaves);
+    if needed.is_empty() {
+        needed = vec![true; nodes];
     }
     // Far sums at the grid points of every needed target cluster that has its own.
     let mut local: Vec<Vec<f64>> = vec![Vec::new(); nodes];

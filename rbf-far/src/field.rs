@@ -49,15 +49,16 @@ pub struct FarField<const D: usize> {
     self_plan: OnceLock<Plan>,
 }
 
-/// Targets from which [`FarField::values`] takes the dual traversal: below, few target
-/// clusters are large enough for a grid, and the treecode's leaves of 512 targets share their
-/// interaction lists more widely. On the weights of a 10⁵-centre fit of the peers' surface
-/// problem, at 368 000 points within 0.03 of the surface (the kind a render samples), the dual
-/// traversal with targets' grids one point finer took 3.6 s at order 10 and 6.7 s at order 12
-/// against 6.5 s and 8.9 s by the treecode, erring 7.0e-7 and 2.9e-9 (at 1000 of them, against
-/// compensated direct sums) where the treecode erred 1.5e-6 and 7.4e-9; with targets' grids
-/// as fine as the sources', 4.2e-6 and 4.5e-8: the treecode's error at sampled points, which
-/// the evaluator measures, then understated it.
+/// Targets from which [`FarField::values`] may take the dual traversal (if there are at least
+/// as many as centres): below, few target clusters are large enough for a grid, and the
+/// treecode's leaves of 512 targets share their interaction lists more widely. The targets'
+/// grids have one point more per side than the sources': on the weights of a 10⁵-centre fit of
+/// the peers' surface problem, at 3.7·10⁵ points within 0.03 of the surface, that took 3.6 s at
+/// order 10 and 6.7 s at order 12 against 6.5 s and 8.9 s by the treecode, erring 7.0e-7 and
+/// 2.9e-9 (at 1000 of them, against compensated direct sums) where the treecode erred 1.5e-6
+/// and 7.4e-9; with grids as fine as the sources', 4.2e-6 and 4.5e-8. With fewer targets than
+/// centres it lost: a render's 3.7·10⁵ band samples of a 10⁶-centre model took 21.2 s against
+/// the treecode's 18.9 s (and those of the 10⁵-centre model 5.3 s against 6.1 s).
 pub(crate) const DUAL_TARGETS: usize = 4096;
 
 /// The weights of a [`FarField`]'s centres moved onto its proxies.
@@ -175,9 +176,9 @@ impl<const D: usize> FarField<D> {
     }
 
     /// Σⱼ wⱼ φ(|xᵢ − cⱼ|) at every target (no affine part): by the treecode (each leaf of
-    /// targets sums its near centres and far proxies), or from 4096 targets by a dual traversal
-    /// of a tree over the targets with the field's own, far sums taken on grids over clusters
-    /// of targets and interpolated to them.
+    /// targets sums its near centres and far proxies), or, from 4096 targets and at least as
+    /// many as centres, by a dual traversal of a tree over the targets with the field's own, far
+    /// sums taken on grids over clusters of targets and interpolated to them.
     pub fn values(
         &self,
         charges: &Charges,
@@ -186,7 +187,7 @@ impl<const D: usize> FarField<D> {
     ) -> Result<(), LengthMismatch> {
         LengthMismatch::check("output", targets.len(), out.len())?;
         self.check_charges(charges)?;
-        if targets.len() >= DUAL_TARGETS {
+        if self.takes_dual(targets.len()) {
             return self.dual_values(charges, targets, out);
         }
         let target_tree = Tree::new(targets, self.settings.target_leaf);
@@ -210,16 +211,16 @@ impl<const D: usize> FarField<D> {
         Ok(())
     }
 
-    /// The dual traversal's sums at the targets of the target `leaves` of `clusters` (a tree
-    /// over `sorted`, the targets in its order), as [`evaluate`] gives them.
+    /// The dual traversal's sums at the targets of the target leaves `only` of `clusters` (every
+    /// leaf if empty; a tree over `sorted`, the targets in its order), as [`evaluate`] gives them.
     fn dual_sums(
         &self,
         charges: &Charges,
         clusters: &Clusters<D>,
         sorted: &[[f64; D]],
-        leaves: &[usize],
+        only: &[usize],
     ) -> Result<Vec<(usize, Vec<f64>)>, LengthMismatch> {
-        let plan = Plan::new(clusters, &self.clusters, self.settings.theta);
+        let plan = Plan::above(clusters, &self.clusters, self.settings.theta, only);
         let sources = Weighted {
             kernel: self.kernel,
             clusters: &self.clusters,
@@ -227,7 +228,15 @@ impl<const D: usize> FarField<D> {
             weights: &charges.weights,
             charges: &charges.proxy,
         };
+        let all = clusters.tree.leaves();
+        let leaves = if only.is_empty() { &all } else { only };
         evaluate(&plan, clusters, sorted, &sources, leaves)
+    }
+
+    /// Whether [`FarField::values`] at `targets` points takes the dual traversal: from
+    /// [`DUAL_TARGETS`] points and at least as many as there are centres.
+    fn takes_dual(&self, targets: usize) -> bool {
+        targets >= DUAL_TARGETS.max(self.len())
     }
 
     /// A tree over `targets` with grids one point finer per side than the sources' (measured:
@@ -256,8 +265,7 @@ impl<const D: usize> FarField<D> {
         out: &mut [f64],
     ) -> Result<(), LengthMismatch> {
         let (clusters, sorted) = self.target_clusters(targets);
-        let leaves = clusters.tree.leaves();
-        for (start, v) in self.dual_sums(charges, &clusters, &sorted, &leaves)? {
+        for (start, v) in self.dual_sums(charges, &clusters, &sorted, &[])? {
             for (&i, x) in clusters.tree.order[start..].iter().zip(v) {
                 out[i] = x;
             }
@@ -511,8 +519,9 @@ const ORDERS: [usize; 5] = [8, 10, 12, 14, 16];
 /// The far field of `weights` on `centres` at the lowest order whose largest error at sampled
 /// `points`, against compensated direct sums, is at most `error` (absolute); with its charges
 /// and that measured error. Both ways [`FarField::values`] takes sums are measured: the
-/// treecode at up to 1000 points spread over `points`, and, from [`DUAL_TARGETS`] points, the
-/// dual traversal at every point of leaves spread over a tree over them (about 2000). `None`
+/// treecode at up to 1000 points spread over `points`, and, where there are enough of them
+/// for [`FarField::values`] to take it, the dual traversal at every point of leaves spread over
+/// a tree over them (about 2000). `None`
 /// if no order up to 16 is that accurate.
 ///
 /// ```
@@ -551,7 +560,7 @@ pub fn calibrated<const D: usize>(
         };
         let field = FarField::new(kernel, centres, &settings);
         let (charges, mut measured) = field.error_at(weights, &sample, &sample_sums)?;
-        if points.len() >= DUAL_TARGETS {
+        if field.takes_dual(points.len()) {
             let (rows, approx) = field.dual_sample(&charges, points, DUAL_SAMPLE).ok()?;
             if dual.is_none() {
                 let at: Vec<[f64; D]> = rows.iter().map(|&i| points[i]).collect();
