@@ -110,10 +110,10 @@ impl Plan {
             if let Some(&(_, on_grid, source)) = ways.iter().filter(|_| settle).min_by_key(|w| w.0)
             {
                 if on_grid {
-                    plan.at_grid[t].push(source);
+                    push_merged(&mut plan.at_grid[t], source);
                     plan.has_local[t] = true;
                 } else {
-                    plan.at_targets[t].push(source);
+                    push_merged(&mut plan.at_targets[t], source);
                 }
                 continue;
             }
@@ -124,7 +124,10 @@ impl Plan {
             };
             match (split_target, tn.children, sn.children) {
                 (true, Some((a, b)), _) => stack.extend([(a, s), (b, s)]),
-                (false, _, Some((a, b))) => stack.extend([(t, a), (t, b)]),
+                // The left child popped first: a cluster's runs of centres come in order and
+                // merge as they come (with θ = 0 nothing is ever apart, and every pair of
+                // leaves would otherwise be kept apart).
+                (false, _, Some((a, b))) => stack.extend([(t, b), (t, a)]),
                 // Both leaves: settled above.
                 _ => {}
             }
@@ -163,6 +166,14 @@ fn needed_by<const D: usize>(targets: &Clusters<D>, leaves: &[usize]) -> Vec<boo
         }
     }
     needed
+}
+
+/// Appends `source`, joined to the last run of centres if it follows on from it.
+fn push_merged(list: &mut Vec<Source>, source: Source) {
+    match (list.last_mut(), source) {
+        (Some(Source::Centres(_, end)), Source::Centres(a, b)) if *end == a => *end = b,
+        _ => list.push(source),
+    }
 }
 
 /// Sorts runs of centres and joins those that meet; proxies stay as they are.
@@ -231,10 +242,10 @@ pub(crate) fn evaluate<const D: usize>(
 ) -> Result<Vec<(usize, Vec<f64>)>, LengthMismatch> {
     let nodes = targets.tree.nodes.len();
     LengthMismatch::check("targets", targets.tree.order.len(), points.len())?;
-    let mut needed = needed_by(targets, leaves);
-    if needed.is_empty() {
-        needed = vec![true; nodes];
+    if leaves.is_empty() {
+        return Ok(Vec::new());
     }
+    let needed = needed_by(targets, leaves);
     // Far sums at the grid points of every needed target cluster that has its own.
     let mut local: Vec<Vec<f64>> = vec![Vec::new(); nodes];
     let own: Vec<(usize, Vec<f64>)> = (0..nodes)
@@ -330,6 +341,31 @@ mod tests {
             .map(|i| if i % 2 == 0 { 1.0 } else { -1.0 } * (1.0 + (i as f64 * 0.7).sin().abs()))
             .collect();
         (points, weights)
+    }
+
+    #[test]
+    fn with_nothing_apart_every_leaf_sums_all_centres_in_one_run() {
+        // θ = 0: no pair is ever apart, so the plan is direct sums, one merged run a leaf.
+        let (points, _) = sheet(5000);
+        let settings = FarFieldSettings {
+            theta: 0.0,
+            leaf: 16,
+            ..FarFieldSettings::default()
+        };
+        let clusters = Clusters::over(Tree::new(&points, settings.leaf), &settings, 1.0);
+        let plan = Plan::new(&clusters, &clusters, settings.theta);
+        for t in clusters.tree.leaves() {
+            assert_eq!(
+                plan.at_targets[t],
+                vec![Source::Centres(0, 5000)],
+                "leaf {t}"
+            );
+        }
+        assert!(plan.at_grid.iter().all(Vec::is_empty));
+        assert!(
+            plan.at_targets.iter().filter(|l| !l.is_empty()).count()
+                == clusters.tree.leaves().len()
+        );
     }
 
     #[test]

@@ -638,7 +638,8 @@ pub fn calibrated_product<const D: usize>(
 
 impl<const D: usize> FarField<D> {
     /// The largest error of the product at the centres on `weights` ([`FarField::self_values`])
-    /// at `rows` (the caller's order) against `exact` sums there; `None` on mismatched lengths.
+    /// at `rows` (the caller's order) against `exact` sums there; `None` on mismatched lengths
+    /// or no rows.
     ///
     /// ```
     /// use rbf_core::{InterpolantView, Kernel};
@@ -654,12 +655,13 @@ impl<const D: usize> FarField<D> {
     /// assert!(field.product_error(&weights, &rows, &exact).unwrap() < 1e-6);
     /// ```
     pub fn product_error(&self, weights: &[f64], rows: &[usize], exact: &[f64]) -> Option<f64> {
+        // No rows measure nothing: no error is claimed.
+        if rows.is_empty() || exact.len() != rows.len() {
+            return None;
+        }
         let charges = self.charges(weights).ok()?;
         let mut approx = vec![0.0; rows.len()];
         self.self_values_at(&charges, rows, &mut approx).ok()?;
-        if exact.len() != rows.len() {
-            return None;
-        }
         Some(
             approx
                 .iter()

@@ -193,6 +193,21 @@ proptest! {
 }
 
 #[test]
+fn no_rows_measure_nothing_and_claim_no_error() {
+    let centres = cloud(Cloud::Random, 3000, 4);
+    let w = weights(3000, 4);
+    let field = FarField::new(Kernel::Cubic, &centres, &FarFieldSettings::default());
+    let charges = field.charges(&w).unwrap();
+    field.self_values_at(&charges, &[], &mut []).unwrap();
+    assert_eq!(field.product_error(&w, &[], &[]), None);
+    assert!(field.sample_rows(0).is_empty());
+    // Calibrated at no rows, no far field is trusted.
+    assert!(rbf_far::calibrated_product(Kernel::Cubic, &centres, &w, 1.0, 0, 0).is_none());
+    // A row out of range is refused, not read.
+    assert!(field.self_values_at(&charges, &[3000], &mut [0.0]).is_err());
+}
+
+#[test]
 fn far_field_is_exact_for_clusters_it_never_approximates() {
     // Fewer centres than any cluster's proxies: every sum is direct, to rounding.
     let centres = cloud(Cloud::Random, 40, 3);
