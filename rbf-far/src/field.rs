@@ -221,16 +221,9 @@ impl<const D: usize> FarField<D> {
         only: &[usize],
     ) -> Result<Vec<(usize, Vec<f64>)>, LengthMismatch> {
         let plan = Plan::above(clusters, &self.clusters, self.settings.theta, only);
-        let sources = Weighted {
-            kernel: self.kernel,
-            clusters: &self.clusters,
-            centres: &self.centres,
-            weights: &charges.weights,
-            charges: &charges.proxy,
-        };
         let all = clusters.tree.leaves();
         let leaves = if only.is_empty() { &all } else { only };
-        evaluate(&plan, clusters, sorted, &sources, leaves)
+        evaluate(&plan, clusters, sorted, &self.weighted(charges), leaves)
     }
 
     /// Whether [`FarField::values`] at `targets` points takes the dual traversal: from
@@ -340,23 +333,37 @@ impl<const D: usize> FarField<D> {
     pub fn self_values(&self, charges: &Charges, out: &mut [f64]) -> Result<(), LengthMismatch> {
         LengthMismatch::check("output", self.len(), out.len())?;
         self.check_charges(charges)?;
-        let plan = self
-            .self_plan
-            .get_or_init(|| Plan::new(&self.clusters, &self.clusters, self.settings.theta));
-        let sources = Weighted {
-            kernel: self.kernel,
-            clusters: &self.clusters,
-            centres: &self.centres,
-            weights: &charges.weights,
-            charges: &charges.proxy,
-        };
         let leaves = self.clusters.tree.leaves();
-        for (start, v) in evaluate(plan, &self.clusters, &self.centres, &sources, &leaves)? {
+        for (start, v) in self.self_sums(charges, &leaves)? {
             for (&i, x) in self.clusters.tree.order[start..].iter().zip(v) {
                 out[i] = x;
             }
         }
         Ok(())
+    }
+
+    /// The product at the centres of the field's `leaves`, by the plan kept for it.
+    fn self_sums(
+        &self,
+        charges: &Charges,
+        leaves: &[usize],
+    ) -> Result<Vec<(usize, Vec<f64>)>, LengthMismatch> {
+        let plan = self
+            .self_plan
+            .get_or_init(|| Plan::new(&self.clusters, &self.clusters, self.settings.theta));
+        let sources = self.weighted(charges);
+        evaluate(plan, &self.clusters, &self.centres, &sources, leaves)
+    }
+
+    /// The centres and proxies with what `charges` puts on them.
+    fn weighted<'s>(&'s self, charges: &'s Charges) -> Weighted<'s, D> {
+        Weighted {
+            kernel: self.kernel,
+            clusters: &self.clusters,
+            centres: &self.centres,
+            weights: &charges.weights,
+            charges: &charges.proxy,
+        }
     }
 
     /// [`FarField::self_values`] at the centres `rows` only (indices in the caller's order;
@@ -388,18 +395,8 @@ impl<const D: usize> FarField<D> {
         let mut leaves: Vec<usize> = rows.iter().map(|&r| leaf_of(position[r])).collect();
         leaves.sort_unstable();
         leaves.dedup();
-        let plan = self
-            .self_plan
-            .get_or_init(|| Plan::new(&self.clusters, &self.clusters, self.settings.theta));
-        let sources = Weighted {
-            kernel: self.kernel,
-            clusters: &self.clusters,
-            centres: &self.centres,
-            weights: &charges.weights,
-            charges: &charges.proxy,
-        };
         let mut at_position = vec![f64::NAN; order.len()];
-        for (start, v) in evaluate(plan, &self.clusters, &self.centres, &sources, &leaves)? {
+        for (start, v) in self.self_sums(charges, &leaves)? {
             at_position[start..start + v.len()].copy_from_slice(&v);
         }
         for (o, &r) in out.iter_mut().zip(rows) {
