@@ -83,31 +83,28 @@ impl Plan {
             let (nt, ns) = (targets.count(t), sources.count(s));
             let (pt, ps) = (targets.proxies[t].len(), sources.proxies[s].len());
             let (t_grid, s_grid) = (targets.grids[t].is_some(), sources.grids[s].is_some());
-            let direct = (nt * ns, false, Source::Centres(sn.start, sn.end));
-            let mut ways = vec![];
-            if t_apart && s_apart {
-                ways.push(direct);
-            }
-            if s_apart && s_grid {
-                ways.push((nt * ps, false, Source::Proxies(s)));
-            }
-            if t_apart && t_grid {
-                ways.push((pt * ns, true, Source::Centres(sn.start, sn.end)));
-            }
-            if t_apart && s_apart && t_grid && s_grid {
-                ways.push((pt * ps, true, Source::Proxies(s)));
-            }
             let (t_leaf, s_leaf) = (tn.children.is_none(), sn.children.is_none());
-            if t_leaf && s_leaf && ways.is_empty() {
-                ways.push(direct);
-            }
+            let centres = Source::Centres(sn.start, sn.end);
+            // The ways allowed, with their kernel evaluations (a grid exists only where it has
+            // fewer points than its cluster, so a proxy way beats the direct one it replaces).
+            let ways = [
+                ((t_apart && s_apart) || (t_leaf && s_leaf)).then_some((nt * ns, false, centres)),
+                (s_apart && s_grid).then_some((nt * ps, false, Source::Proxies(s))),
+                (t_apart && t_grid).then_some((pt * ns, true, centres)),
+                (t_apart && s_apart && t_grid && s_grid).then_some((
+                    pt * ps,
+                    true,
+                    Source::Proxies(s),
+                )),
+            ];
             // Apart on both sides, or one side cannot be split and the other is apart
             // enough for its own way: interact; else split.
             let settle = (t_apart && s_apart)
                 || (t_leaf && s_leaf)
                 || (t_leaf && s_apart && s_grid)
                 || (s_leaf && t_apart && t_grid);
-            if let Some(&(_, on_grid, source)) = ways.iter().filter(|_| settle).min_by_key(|w| w.0)
+            if let Some(&(_, on_grid, source)) =
+                ways.iter().flatten().filter(|_| settle).min_by_key(|w| w.0)
             {
                 if on_grid {
                     push_merged(&mut plan.at_grid[t], source);
