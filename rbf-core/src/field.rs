@@ -34,6 +34,20 @@ pub trait ScalarField<const D: usize>: Sync {
         values: &mut [f64],
         gradients: &mut [[f64; D]],
     ) -> Result<(), LengthMismatch>;
+
+    /// A cheaper evaluation of the same field within a looser absolute error, for work whose
+    /// results only steer exact evaluations (a tracer's bounds and samples, each hit confirmed
+    /// through `self`): that field and the largest error measured for it. `None` (the default)
+    /// when there is nothing cheaper than `self`.
+    ///
+    /// ```
+    /// use rbf_core::{InterpolantView, Kernel, ScalarField};
+    /// let view = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+    /// assert!(view.coarse().is_none());
+    /// ```
+    fn coarse(&self) -> Option<(&dyn ScalarField<D>, f64)> {
+        None
+    }
 }
 
 impl<const D: usize> ScalarField<D> for InterpolantView<'_, f64, D> {

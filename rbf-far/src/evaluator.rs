@@ -4,7 +4,7 @@
 
 use rbf_core::{InterpolantView, LengthMismatch, ScalarField};
 
-use crate::field::{Charges, FarField, calibrated};
+use crate::field::{Calibrated, Charges, FarField, calibrated_with_coarse};
 
 /// Centres below which direct sums are used whatever the number of points (the far field does
 /// not pay there).
@@ -12,6 +12,11 @@ pub const FAR_FIELD_CENTRES: usize = 20_000;
 
 /// Points at which the far field's error is measured before it is trusted.
 const SAMPLED_POINTS: usize = 1000;
+
+/// The coarse field ([`ScalarField::coarse`]) errs at most this many times the accuracy asked:
+/// at the default accuracy, 10⁻³ of the diagonal, a fraction of a pixel or a voxel at the sizes
+/// rendered and meshed, for samples that only steer evaluations taken at the accuracy asked.
+const COARSE_FACTOR: f64 = 1e3;
 
 /// How an [`Evaluator`] evaluates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,6 +70,8 @@ pub struct Evaluator<'a, const D: usize> {
     view: InterpolantView<'a, f64, D>,
     far: Option<(FarField<D>, Charges)>,
     method: Method,
+    /// A far field of lower order within [`COARSE_FACTOR`] times the accuracy, if there is one.
+    coarse: Option<Box<Evaluator<'a, D>>>,
 }
 
 impl<'a, const D: usize> Evaluator<'a, D> {
@@ -78,22 +85,35 @@ impl<'a, const D: usize> Evaluator<'a, D> {
         if k < FAR_FIELD_CENTRES || points.len() < SAMPLED_POINTS || !(accuracy > 0.0) {
             return direct;
         }
-        match calibrated(
+        let (fine, coarse) = calibrated_with_coarse(
             view.kernel(),
             view.centres(),
             view.weights(),
             points,
             0.5 * accuracy,
-        ) {
-            Some((field, charges, sampled_error)) => Self {
-                view,
-                method: Method::FarField {
-                    order: field.settings().order,
-                    sampled_error,
-                },
-                far: Some((field, charges)),
+            COARSE_FACTOR * accuracy,
+        );
+        let coarse = coarse.map(|c| Box::new(Self::far(view, c, None)));
+        match fine {
+            Some(fine) => Self::far(view, fine, coarse),
+            None => Self { coarse, ..direct },
+        }
+    }
+
+    /// The far field `far` with its coarse companion.
+    fn far(
+        view: InterpolantView<'a, f64, D>,
+        (field, charges, sampled_error): Calibrated<D>,
+        coarse: Option<Box<Self>>,
+    ) -> Self {
+        Self {
+            view,
+            method: Method::FarField {
+                order: field.settings().order,
+                sampled_error,
             },
-            None => direct,
+            far: Some((field, charges)),
+            coarse,
         }
     }
 
@@ -109,6 +129,7 @@ impl<'a, const D: usize> Evaluator<'a, D> {
             view,
             far: None,
             method: Method::Direct,
+            coarse: None,
         }
     }
 
@@ -194,5 +215,13 @@ impl<const D: usize> ScalarField<D> for Evaluator<'_, D> {
         gradients: &mut [[f64; D]],
     ) -> Result<(), LengthMismatch> {
         self.values_and_gradients(points, values, gradients)
+    }
+
+    fn coarse(&self) -> Option<(&dyn ScalarField<D>, f64)> {
+        let coarse = self.coarse.as_deref()?;
+        match coarse.method {
+            Method::FarField { sampled_error, .. } => Some((coarse, sampled_error)),
+            Method::Direct => None,
+        }
     }
 }

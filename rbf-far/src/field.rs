@@ -535,7 +535,25 @@ pub fn calibrated<const D: usize>(
     weights: &[f64],
     points: &[[f64; D]],
     error: f64,
-) -> Option<(FarField<D>, Charges, f64)> {
+) -> Option<Calibrated<D>> {
+    calibrated_with_coarse(kernel, centres, weights, points, error, error).0
+}
+
+/// A far field with its charges and the largest error measured for it.
+pub type Calibrated<const D: usize> = (FarField<D>, Charges, f64);
+
+/// [`calibrated`] within `error`, and, on the way, the lowest order within the looser
+/// `coarse_error` when that order is lower (the orders are measured in turn, so the coarse
+/// field costs no extra measurement).
+pub(crate) fn calibrated_with_coarse<const D: usize>(
+    kernel: Kernel,
+    centres: &[[f64; D]],
+    weights: &[f64],
+    points: &[[f64; D]],
+    error: f64,
+    coarse_error: f64,
+) -> (Option<Calibrated<D>>, Option<Calibrated<D>>) {
+    let mut coarse = None;
     let exact = |at: &[[f64; D]]| {
         let mut sums = vec![0.0; at.len()];
         InterpolantView::new(kernel, centres, weights, 0.0, [0.0; D])
@@ -547,7 +565,9 @@ pub fn calibrated<const D: usize>(
     let sample: Vec<[f64; D]> = (0..spread)
         .map(|i| points[i * points.len() / spread])
         .collect();
-    let sample_sums = exact(&sample)?;
+    let Some(sample_sums) = exact(&sample) else {
+        return (None, None);
+    };
     // The dual traversal's rows are the same at every order (the tree over the points is).
     let mut dual: Option<(Vec<usize>, Vec<f64>)> = None;
     for order in ORDERS {
@@ -556,14 +576,21 @@ pub fn calibrated<const D: usize>(
             ..FarFieldSettings::default()
         };
         let field = FarField::new(kernel, centres, &settings);
-        let (charges, mut measured) = field.error_at(weights, &sample, &sample_sums)?;
+        let Some((charges, mut measured)) = field.error_at(weights, &sample, &sample_sums) else {
+            break;
+        };
         if field.takes_dual(points.len()) {
-            let (rows, approx) = field.dual_sample(&charges, points, DUAL_SAMPLE).ok()?;
+            let Ok((rows, approx)) = field.dual_sample(&charges, points, DUAL_SAMPLE) else {
+                break;
+            };
             if dual.is_none() {
                 let at: Vec<[f64; D]> = rows.iter().map(|&i| points[i]).collect();
-                dual = Some((rows, exact(&at)?));
+                let Some(sums) = exact(&at) else { break };
+                dual = Some((rows, sums));
             }
-            let (_, sums) = dual.as_ref()?;
+            let Some((_, sums)) = dual.as_ref() else {
+                break;
+            };
             measured = approx
                 .iter()
                 .zip(sums)
@@ -571,10 +598,13 @@ pub fn calibrated<const D: usize>(
                 .fold(measured, f64::max);
         }
         if measured <= error {
-            return Some((field, charges, measured));
+            return (Some((field, charges, measured)), coarse);
+        }
+        if coarse.is_none() && measured <= coarse_error {
+            coarse = Some((field, charges, measured));
         }
     }
-    None
+    (None, coarse)
 }
 
 /// Points at which [`calibrated`] measures the treecode.

@@ -18,6 +18,6 @@ mod tensor;
 mod tree;
 
 pub use evaluator::{Evaluator, FAR_FIELD_CENTRES, Method, default_accuracy};
-pub use field::{Charges, FarField, calibrated, calibrated_product};
+pub use field::{Calibrated, Charges, FarField, calibrated, calibrated_product};
 pub use settings::FarFieldSettings;
 pub use tree::{Node, Tree, bounds, box_gap2, point_gap2};

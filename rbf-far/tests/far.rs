@@ -3,7 +3,7 @@
 //! within the accuracy asked at every point, not only at its samples.
 
 use proptest::prelude::*;
-use rbf_core::{InterpolantView, Kernel};
+use rbf_core::{InterpolantView, Kernel, ScalarField};
 use rbf_far::{Evaluator, FarField, FarFieldSettings, Method};
 
 /// A deterministic generator.
@@ -292,6 +292,25 @@ fn evaluator_meets_the_accuracy_at(f: InterpolantView<'_, f64, 3>, points: &[[f6
             points.len()
         );
     }
+    // The coarse field, of lower order, within a thousand times the accuracy at every point.
+    let Method::FarField { order, .. } = evaluator.method() else {
+        unreachable!()
+    };
+    let (coarse, stated) = evaluator
+        .coarse()
+        .expect("a coarse field below the fine one");
+    assert!(stated <= 1e3 * accuracy);
+    let mut rough = vec![0.0; points.len()];
+    coarse.field_values(points, &mut rough).unwrap();
+    let worst = rough
+        .iter()
+        .zip(&exact)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst <= 1e3 * accuracy && worst > accuracy,
+        "coarse field (the fine one is of order {order}): worst error {worst:e}"
+    );
     // The affine part is added to values and gradients.
     let (dv, dg) = f.value_and_gradient(&points[17]);
     assert!((v[17] - dv).abs() <= accuracy);

@@ -86,10 +86,16 @@ impl Band {
             .collect();
         let used = csg.models();
         let mut per_model = vec![Vec::new(); views.len()];
+        // The samples only steer (every hit is confirmed through the models themselves): a
+        // model's coarse field samples it where it has one, and its error widens every fine
+        // cell's (the solid's min and max move no more than the models they take).
+        let mut sample_error = 0.0_f64;
         for &m in &used {
             per_model[m] = vec![0.0; points.len()];
+            let (field, error) = crate::tracer::steering(views[m]);
+            sample_error = sample_error.max(error);
             // Equal lengths by construction.
-            let _ = views[m].field_values(&points, &mut per_model[m]);
+            let _ = field.field_values(&points, &mut per_model[m]);
         }
         let solid: Vec<f64> = (0..points.len())
             .into_par_iter()
@@ -113,7 +119,8 @@ impl Band {
                         solid[at]
                     })
                     .collect();
-                let error = block_error(&values);
+                let mut error = block_error(&values);
+                error.iter_mut().for_each(|e| *e += sample_error);
                 (values, error)
             })
             .collect();

@@ -112,7 +112,8 @@ impl<'s, 'm> Tracer<'s, 'm> {
         let mut estimated: Vec<Vec<f64>> = vec![Vec::new(); views.len()];
         let mut centre_values: Vec<Vec<f64>> = vec![Vec::new(); views.len()];
         for &m in &used {
-            let (e, v) = estimate_cells(views[m], lo, cell, n);
+            // Estimates only steer (1.5 times the largest slope seen): the coarse field does.
+            let (e, v) = estimate_cells(steering(views[m]).0, lo, cell, n);
             estimated[m] = e;
             centre_values[m] = v;
         }
@@ -584,6 +585,12 @@ impl<'s, 'm> Tracer<'s, 'm> {
     fn cell_min(&self) -> f64 {
         self.cell.iter().copied().fold(f64::INFINITY, f64::min)
     }
+}
+
+/// What samples that only steer evaluate: the model's coarse field and its measured error
+/// ([`ScalarField::coarse`]), or the model itself, exact.
+pub(crate) fn steering(view: &dyn ScalarField<3>) -> (&dyn ScalarField<3>, f64) {
+    view.coarse().unwrap_or((view, 0.0))
 }
 
 /// The part of the ray inside the box, as distances along it.
