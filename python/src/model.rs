@@ -300,7 +300,11 @@ impl Model {
         let objects = [Object::new(Csg::Model(0), 0)];
         let image = py
             .detach(|| {
-                let views = [Evaluator::with_default_accuracy(view, view.centres())];
+                let views = [Evaluator::with_coarse(
+                    view,
+                    view.centres(),
+                    rbf_far::default_accuracy(view.centres()),
+                )];
                 render_framed(&views, &objects, &settings, (width, height), |lo, hi| {
                     Camera::orbit(lo, hi, azimuth, elevation, width, height)
                 })

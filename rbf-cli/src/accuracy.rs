@@ -28,6 +28,25 @@ impl AccuracyArgs {
         view: InterpolantView<'a, f64, D>,
         sample: &[[f64; D]],
     ) -> Result<Evaluator<'a, D>, Failure> {
+        self.evaluator_with(view, sample, false)
+    }
+
+    /// [`AccuracyArgs::evaluator`] with a coarse far field beside it, for what only steers
+    /// (a render's bounds and samples).
+    pub(crate) fn steering_evaluator<'a, const D: usize>(
+        &self,
+        view: InterpolantView<'a, f64, D>,
+        sample: &[[f64; D]],
+    ) -> Result<Evaluator<'a, D>, Failure> {
+        self.evaluator_with(view, sample, true)
+    }
+
+    fn evaluator_with<'a, const D: usize>(
+        &self,
+        view: InterpolantView<'a, f64, D>,
+        sample: &[[f64; D]],
+        coarse: bool,
+    ) -> Result<Evaluator<'a, D>, Failure> {
         if self.exact {
             return Ok(Evaluator::direct(view));
         }
@@ -41,6 +60,10 @@ impl AccuracyArgs {
             }
             None => rbf_far::default_accuracy(view.centres()),
         };
-        Ok(Evaluator::new(view, sample, accuracy))
+        Ok(if coarse {
+            Evaluator::with_coarse(view, sample, accuracy)
+        } else {
+            Evaluator::new(view, sample, accuracy)
+        })
     }
 }

@@ -19,8 +19,9 @@ Models are ray traced. By default f is sampled on a fine lattice in the cells ne
 samples' interpolant and each hit is confirmed by exact Newton steps on the model, so a
 3000-constraint model renders at 512 × 512 in about a second. --bound guaranteed sphere traces
 instead with steps bounded by Lipschitz constants proved from the kernel and the weights, so
-that no ray can pass through the surface, at tens of times the cost. Samples and bounds of a
-large model come from a coarse far field (within 1000 times --accuracy; hits still meet it).
+that no ray can pass through the surface, at tens of times the cost. By default the cell
+estimates and samples of a large model come from a coarse far field (measured within 1000 times
+--accuracy; hits still meet --accuracy).
 Anti-aliasing (--samples) traces its extra rays only in pixels that differ from a neighbour
 and do not show one smooth surface with it. Several models are drawn
 side by side in the same scene, each in its own colour, unless --union, --intersect or
@@ -185,7 +186,7 @@ pub(crate) fn run(args: &RenderArgs, quiet: bool, verbose: bool) -> Result<(), F
             .iter()
             .map(|m| {
                 let view = m.interpolant.view();
-                args.sums.evaluator(view, view.centres())
+                args.sums.steering_evaluator(view, view.centres())
             })
             .collect::<Result<_, _>>()?;
         let all: Vec<Csg> = (0..models.len()).map(Csg::Model).collect();

@@ -13,10 +13,15 @@ pub const FAR_FIELD_CENTRES: usize = 20_000;
 /// Points at which the far field's error is measured before it is trusted.
 const SAMPLED_POINTS: usize = 1000;
 
-/// The coarse field ([`ScalarField::coarse`]) errs at most this many times the accuracy asked:
-/// at the default accuracy, 10⁻³ of the diagonal, a fraction of a pixel or a voxel at the sizes
-/// rendered and meshed, for samples that only steer evaluations taken at the accuracy asked.
+/// The coarse field ([`ScalarField::coarse`]) of [`Evaluator::with_coarse`] erred at most this
+/// many times the accuracy asked at the sampled points: at the default accuracy, 10⁻³ of the
+/// diagonal (for a distance-like f, a fraction of a pixel at the sizes rendered), for samples
+/// that only steer evaluations taken at the accuracy asked.
 const COARSE_FACTOR: f64 = 1e3;
+
+/// The error a coarse field states: twice the largest seen at the sampled points (the fine
+/// field is chosen with the same spare: within half the accuracy there).
+const COARSE_SPARE: f64 = 2.0;
 
 /// How an [`Evaluator`] evaluates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -80,6 +85,45 @@ impl<'a, const D: usize> Evaluator<'a, D> {
     /// error at sampled points of `points` is within half the accuracy, when the model is large
     /// enough for it to pay; direct sums otherwise.
     pub fn new(view: InterpolantView<'a, f64, D>, points: &[[f64; D]], accuracy: f64) -> Self {
+        Self::build(view, points, accuracy, false)
+    }
+
+    /// [`Evaluator::new`], keeping beside it the far field of the lowest order its calibration
+    /// found within a thousand times the accuracy, when that order is lower: the
+    /// [`ScalarField::coarse`] companion that a renderer's bounds and samples take (it costs
+    /// no extra measurement, only the memory of a second far field).
+    ///
+    /// ```
+    /// use rbf_core::{InterpolantView, Kernel, ScalarField};
+    /// use rbf_far::Evaluator;
+    /// let centres: Vec<[f64; 3]> = (0..30_000)
+    ///     .map(|i| { let t = i as f64 * 1e-3; [t.cos(), t.sin(), (5.0 * t).sin()] })
+    ///     .collect();
+    /// let weights: Vec<f64> = (0..30_000).map(|i| if i % 2 == 0 { 1e-4 } else { -1e-4 }).collect();
+    /// let f = InterpolantView::new(Kernel::Cubic, &centres, &weights, 1.0, [0.0; 3]).unwrap();
+    /// let evaluator = Evaluator::with_coarse(f, &centres, 1e-12);
+    /// if let Some((coarse, error)) = evaluator.coarse() {
+    ///     let (mut rough, mut exact) = ([0.0], [0.0]);
+    ///     coarse.field_values(&[[0.1, 0.2, 0.3]], &mut rough).unwrap();
+    ///     f.values(&[[0.1, 0.2, 0.3]], &mut exact).unwrap();
+    ///     assert!(error <= 2e-9 && (rough[0] - exact[0]).abs() <= error);
+    /// }
+    /// assert!(Evaluator::new(f, &centres, 1e-12).coarse().is_none());
+    /// ```
+    pub fn with_coarse(
+        view: InterpolantView<'a, f64, D>,
+        points: &[[f64; D]],
+        accuracy: f64,
+    ) -> Self {
+        Self::build(view, points, accuracy, true)
+    }
+
+    fn build(
+        view: InterpolantView<'a, f64, D>,
+        points: &[[f64; D]],
+        accuracy: f64,
+        keep_coarse: bool,
+    ) -> Self {
         let direct = Self::direct(view);
         let k = view.centres().len();
         if k < FAR_FIELD_CENTRES || points.len() < SAMPLED_POINTS || !(accuracy > 0.0) {
@@ -91,7 +135,11 @@ impl<'a, const D: usize> Evaluator<'a, D> {
             view.weights(),
             points,
             0.5 * accuracy,
-            COARSE_FACTOR * accuracy,
+            if keep_coarse {
+                COARSE_FACTOR * accuracy
+            } else {
+                0.5 * accuracy
+            },
         );
         let coarse = coarse.map(|c| Box::new(Self::far(view, c, None)));
         match fine {
@@ -220,7 +268,7 @@ impl<const D: usize> ScalarField<D> for Evaluator<'_, D> {
     fn coarse(&self) -> Option<(&dyn ScalarField<D>, f64)> {
         let coarse = self.coarse.as_deref()?;
         match coarse.method {
-            Method::FarField { sampled_error, .. } => Some((coarse, sampled_error)),
+            Method::FarField { sampled_error, .. } => Some((coarse, COARSE_SPARE * sampled_error)),
             Method::Direct => None,
         }
     }

@@ -59,7 +59,8 @@ pub struct Light {
 pub struct RenderSettings {
     /// Rays per pixel along each axis (anti-aliasing): 2 traces 4 rays a pixel, in the
     /// pixels whose colour differs from a neighbour's and that do not show one smooth surface
-    /// with it (same object, normals within about 6°; with shadows or mirrors, colour alone).
+    /// with it (the same object, normals within about 6°). With shadows or mirrors, and on the
+    /// floor, colour alone decides.
     pub samples: u32,
     /// Trace toward each light for hard shadows.
     pub shadows: bool,

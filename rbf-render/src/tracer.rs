@@ -111,11 +111,19 @@ impl<'s, 'm> Tracer<'s, 'm> {
         // Estimated slopes per model and cell, and f at each cell's centre.
         let mut estimated: Vec<Vec<f64>> = vec![Vec::new(); views.len()];
         let mut centre_values: Vec<Vec<f64>> = vec![Vec::new(); views.len()];
+        // By default the estimates only steer (cells skipped, then the band's samples, whose
+        // hits are confirmed exactly): a model's coarse field takes them, its error widening
+        // every cell's interval. Stepped by the estimates, rays take the model itself.
+        let mut coarse_error = vec![0.0; views.len()];
         for &m in &used {
-            // Estimates only steer (1.5 times the largest slope seen): the coarse field does.
-            let (e, v) = estimate_cells(steering(views[m]).0, lo, cell, n);
+            let (field, error) = match mode {
+                Lipschitz::Auto => steering(views[m]),
+                _ => (views[m], 0.0),
+            };
+            let (e, v) = estimate_cells(field, lo, cell, n);
             estimated[m] = e;
             centre_values[m] = v;
+            coarse_error[m] = error;
         }
         let interval_empty = |bounds: &[(f64, f64)]| {
             let (a, b) = csg.interval(bounds);
@@ -143,7 +151,7 @@ impl<'s, 'm> Tracer<'s, 'm> {
         let estimated_empty = |i: usize| {
             let mut bounds = vec![(0.0, 0.0); views.len()];
             for &m in &used {
-                let c = estimated[m][i] * radius;
+                let c = estimated[m][i] * radius + coarse_error[m];
                 bounds[m] = (centre_values[m][i] - c, centre_values[m][i] + c);
             }
             interval_empty(&bounds)

@@ -518,11 +518,18 @@ impl rbf_core::ScalarField<3> for WithCoarse<'_> {
 
 #[test]
 fn a_coarse_field_steers_but_hits_stay_on_the_exact_surface() {
-    // The coarse sphere is 1/3 of a fine cell smaller (|∇f| = 3 on the unit sphere; fine cells
-    // are about 0.017 here). Rays that graze the exact sphere miss the coarse one: only the
-    // stated error, added to the band's, sends them to the exact Newton steps that hit.
+    // The coarse sphere is smaller by 1/3 of a fine cell (|∇f| = 3 on the unit sphere; fine
+    // cells are about 0.017 here), then by a tenth of the radius. Rays that graze the exact
+    // sphere miss the coarse one: only the stated error, added to the band's and to the cells'
+    // intervals (cells the coarse sphere leaves would be skipped), sends them to the exact
+    // Newton steps that hit.
+    for error in [0.017, 0.3] {
+        coarse_sphere_hits(error);
+    }
+}
+
+fn coarse_sphere_hits(error: f64) {
     let centre = [[0.0; 3]];
-    let error = 0.017;
     let model = WithCoarse {
         exact: sphere(&centre, 1.0),
         coarse: InterpolantView::new(Kernel::Cubic, &centre, &[-1.0], 1.0 - error, [0.0; 3])
@@ -546,7 +553,7 @@ fn a_coarse_field_steers_but_hits_stay_on_the_exact_surface() {
         let t = hit.unwrap_or_else(|| panic!("the ray through ({x}, {y}) missed the sphere"));
         assert!(
             (t - (5.0 - depth)).abs() < 1e-6,
-            "the ray through ({x}, {y}) hit at {t}, not {}",
+            "coarse error {error}: the ray through ({x}, {y}) hit at {t}, not {}",
             5.0 - depth
         );
     }
