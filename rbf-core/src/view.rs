@@ -154,15 +154,18 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
     #[inline(always)]
     fn value_gradient_with<K: Radial>(&self, x: &[T; D]) -> (T, [T; D]) {
         let mut sum = T::ZERO;
-        let mut grad = self.linear;
+        let mut grad = [T::ZERO; D];
         for (c, &w) in self.centres.iter().zip(self.weights) {
             let (t, r2) = offset(x, c);
-            let (phi, g, _) = K::terms_r2(r2);
+            let (phi, slope) = K::slope_r2(r2);
             sum += w * phi;
-            let wg = w * g;
+            let ws = w * slope;
             for d in 0..D {
-                grad[d] += wg * t[d];
+                grad[d] += ws * t[d];
             }
+        }
+        for d in 0..D {
+            grad[d] += self.linear[d];
         }
         (sum + self.affine(x), grad)
     }
@@ -274,22 +277,15 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
 
     #[inline(always)]
     fn values_with<K: Radial>(&self, points: &[[T; D]], out: &mut [T]) {
-        let mut chunks = points.chunks_exact(LANES);
-        let mut outs = out.chunks_exact_mut(LANES);
-        for (pts, o) in (&mut chunks).zip(&mut outs) {
-            let mut lanes = [[T::ZERO; LANES]; D];
-            for (l, p) in pts.iter().enumerate() {
-                for d in 0..D {
-                    lanes[d][l] = p[d];
-                }
+        for (pts, o) in points.chunks(LANES).zip(out.chunks_mut(LANES)) {
+            if pts.len() == 1 {
+                o[0] = self.value_with::<K>(&pts[0]);
+                continue;
             }
-            let sums = self.block_sums::<K>(&lanes);
+            let sums = self.block_sums::<K>(&lanes_of(pts));
             for (l, p) in pts.iter().enumerate() {
                 o[l] = sums[l] + self.affine(p);
             }
-        }
-        for (p, o) in chunks.remainder().iter().zip(outs.into_remainder()) {
-            *o = self.value_with::<K>(p);
         }
     }
 
@@ -375,52 +371,68 @@ impl<'a, T: Real, const D: usize> InterpolantView<'a, T, D> {
         values: &mut [T],
         gradients: &mut [[T; D]],
     ) {
-        let mut chunks = points.chunks_exact(LANES);
-        let mut vs = values.chunks_exact_mut(LANES);
-        let mut gs = gradients.chunks_exact_mut(LANES);
-        for ((pts, v), g) in (&mut chunks).zip(&mut vs).zip(&mut gs) {
-            let mut lanes = [[T::ZERO; LANES]; D];
-            for (l, p) in pts.iter().enumerate() {
-                for d in 0..D {
-                    lanes[d][l] = p[d];
-                }
+        let blocks = points
+            .chunks(LANES)
+            .zip(values.chunks_mut(LANES))
+            .zip(gradients.chunks_mut(LANES));
+        for ((pts, v), g) in blocks {
+            if pts.len() == 1 {
+                (v[0], g[0]) = self.value_gradient_with::<K>(&pts[0]);
+                continue;
             }
-            let mut acc = [T::ZERO; LANES];
-            let mut grad = [[T::ZERO; LANES]; D];
-            for (c, &w) in self.centres.iter().zip(self.weights) {
-                let mut t = [[T::ZERO; LANES]; D];
-                let mut r2 = [T::ZERO; LANES];
-                for d in 0..D {
-                    for l in 0..LANES {
-                        t[d][l] = lanes[d][l] - c[d];
-                        r2[l] += t[d][l] * t[d][l];
-                    }
-                }
-                for l in 0..LANES {
-                    let (phi, slope) = K::slope_r2(r2[l]);
-                    acc[l] += w * phi;
-                    let ws = w * slope;
-                    for d in 0..D {
-                        grad[d][l] += ws * t[d][l];
-                    }
-                }
-            }
+            let (sums, grad) = self.block_gradients::<K>(&lanes_of(pts));
             for (l, p) in pts.iter().enumerate() {
-                v[l] = acc[l] + self.affine(p);
+                v[l] = sums[l] + self.affine(p);
                 for d in 0..D {
                     g[l][d] = grad[d][l] + self.linear[d];
                 }
             }
         }
-        let rest = chunks
-            .remainder()
-            .iter()
-            .zip(vs.into_remainder())
-            .zip(gs.into_remainder());
-        for ((p, v), g) in rest {
-            (*v, *g) = self.value_gradient_with::<K>(p);
+    }
+
+    /// [`InterpolantView::block_sums`] and the sums' gradients, axis by axis.
+    #[inline(always)]
+    fn block_gradients<K: Radial>(&self, lanes: &[[T; LANES]; D]) -> ([T; LANES], [[T; LANES]; D]) {
+        let mut acc = [T::ZERO; LANES];
+        let mut grad = [[T::ZERO; LANES]; D];
+        for (c, &w) in self.centres.iter().zip(self.weights) {
+            let mut t = [[T::ZERO; LANES]; D];
+            let mut r2 = [T::ZERO; LANES];
+            for d in 0..D {
+                for l in 0..LANES {
+                    t[d][l] = lanes[d][l] - c[d];
+                    r2[l] += t[d][l] * t[d][l];
+                }
+            }
+            for l in 0..LANES {
+                let (phi, slope) = K::slope_r2(r2[l]);
+                acc[l] += w * phi;
+                let ws = w * slope;
+                for d in 0..D {
+                    grad[d][l] += ws * t[d][l];
+                }
+            }
+        }
+        // Handed over through memory, axis by axis: stored straight into the points' gradients
+        // (point by point), the accumulators were grouped by point and shuffled in the loop
+        // over the centres, at twice the cost.
+        (acc, core::hint::black_box(grad))
+    }
+}
+
+/// A block of up to [`LANES`] points coordinate by coordinate, the last point repeated in the
+/// lanes left over (their sums are computed and dropped: a block of eight costs about what two
+/// single points do).
+#[inline(always)]
+fn lanes_of<T: Real, const D: usize>(points: &[[T; D]]) -> [[T; LANES]; D] {
+    let mut lanes = [[T::ZERO; LANES]; D];
+    let last = points.len() - 1;
+    for (d, lane) in lanes.iter_mut().enumerate() {
+        for (l, x) in lane.iter_mut().enumerate() {
+            *x = points[l.min(last)][d];
         }
     }
+    lanes
 }
 
 /// x − c and its squared length.

@@ -80,6 +80,40 @@ proptest! {
         }
     }
 
+    /// Batches run eight points at a time, a short last block padded: whatever the batch and
+    /// the point's place in it, its value and gradient come out bit for bit the same, and equal
+    /// to the one-point calls (so nothing downstream depends on how points were grouped).
+    #[test]
+    fn a_point_evaluates_the_same_in_any_batch(
+        cs in value_constraints::<3>(5, 40),
+        k in kernel(),
+        points in proptest::collection::vec(proptest::array::uniform3(-1.5..1.5_f64), 1..30),
+        split in 0..30_usize,
+    ) {
+        let f = fit(&cs, &settings(k)).unwrap().interpolant;
+        let view = f.view();
+        let n = points.len();
+        let (mut values, mut also, mut grads) = (vec![0.0; n], vec![0.0; n], vec![[0.0; 3]; n]);
+        view.values(&points, &mut values).unwrap();
+        view.values_and_gradients(&points, &mut also, &mut grads).unwrap();
+        let split = split % n;
+        for part in [&points[..split], &points[split..]] {
+            let offset = if part.is_empty() || part.as_ptr() == points.as_ptr() { 0 } else { split };
+            let (mut v, mut g) = (vec![0.0; part.len()], vec![[0.0; 3]; part.len()]);
+            view.values_and_gradients(part, &mut v, &mut g).unwrap();
+            for (i, p) in part.iter().enumerate() {
+                let (one, one_gradient) = view.value_and_gradient(p);
+                prop_assert_eq!(one.to_bits(), values[offset + i].to_bits());
+                prop_assert_eq!(one.to_bits(), also[offset + i].to_bits());
+                prop_assert_eq!(one.to_bits(), v[i].to_bits());
+                for d in 0..3 {
+                    prop_assert_eq!(one_gradient[d].to_bits(), grads[offset + i][d].to_bits());
+                    prop_assert_eq!(one_gradient[d].to_bits(), g[i][d].to_bits());
+                }
+            }
+        }
+    }
+
     #[test]
     fn gradient_and_hessian_match_central_differences(
         cs in value_constraints::<3>(5, 40),
