@@ -5,8 +5,8 @@ domain decomposition, FGMRES), on the shared peers' surface problem, in one sitt
 The problem is `surface_problem(N)` of ../shared/peers/ferreus/problems.py: N/2 points on a
 bumpy sphere (value 0) and N/2 moved 0.01 inward along the true normal (value 0.01). Both tools
 interpolate every point with r³ and a linear polynomial. rbf runs with its defaults (a residual
-of 1e-6 of max|h|, at every row by a product or by GMRES's recurrence certified at sampled rows;
-from 4·10⁵ rows, through the far field, 1e-5 certified at sampled rows), then at ferreus-rbf's accuracy (--max-residual 1e-4); ferreus-rbf
+of 1e-5 of max|h|, at every row by a product or by GMRES's recurrence certified at sampled rows;
+from 4·10⁵ rows, through the far field, certified at sampled rows), then at ferreus-rbf's accuracy (--max-residual 1e-4); ferreus-rbf
 for its relative
 tolerance 1e-6 with the tuned domain decomposition of ../shared/peers/README.md. Both are then
 checked the same way: f at 2000 sampled rows by direct sums in numpy (float64), against h.

@@ -64,9 +64,9 @@ def fit(
     ``"linear"``; ``smoothing``: λ ≥ 0 (0 interpolates exactly); ``offset``: the normal
     constraints' offset distance (default: 1% of the box's longest side); ``method``:
     ``"auto"`` (dense below 5000 rows, iterative above), ``"dense"`` or ``"fast"``;
-    ``max_residual``: the largest accepted max|f(cᵢ) − hᵢ| / max|hᵢ| (by default 1e-6, or
-    1e-5 from 400 000 rows, where the products go through the far field; a stall at the
-    rounding floor of strongly cancelling weights is accepted unless it is given).
+    ``max_residual``: the largest accepted max|f(cᵢ) − hᵢ| / max|hᵢ| (by default 1e-6 by the
+    dense method and 1e-5 by the iterative one; a stall at the rounding floor of strongly
+    cancelling weights is accepted unless it is given).
 
     >>> import rbfsurf
     >>> m = rbfsurf.fit(boundary=[[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]],

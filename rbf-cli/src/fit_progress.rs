@@ -60,10 +60,10 @@ impl FitMessages {
                 self.relaxed = Some((products, of));
                 format!("{rows} rows: {products} of {of} products through a relaxed far field")
             }
-            IterativeProgress::FarFieldLimit { limit } => {
+            IterativeProgress::DefaultLimit { limit } => {
                 self.limit = Some(limit);
                 self.tolerance = limit;
-                format!("{rows} rows: fitting to {limit:.0e} of max|h| through the far field")
+                format!("{rows} rows: fitting to {limit:.0e} of max|h|, the iterative default")
             }
             IterativeProgress::RoundingFloor { residual, floor } => {
                 self.rounding_floor = Some(floor);
