@@ -43,6 +43,18 @@ fn eval(c: &mut Criterion) {
                 .expect("lengths")
         })
     });
+    group.bench_function(
+        BenchmarkId::new("core-serial-gradients-f64", few.len()),
+        |b| {
+            let (mut values, mut gradients) = (vec![0.0; few.len()], vec![[0.0; 3]; few.len()]);
+            b.iter(|| {
+                f64_model
+                    .view()
+                    .values_and_gradients(&few, &mut values, &mut gradients)
+                    .expect("lengths")
+            })
+        },
+    );
     group.bench_function(BenchmarkId::new("gradient-f64", few.len()), |b| {
         b.iter(|| {
             few.iter()
