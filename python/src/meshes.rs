@@ -258,6 +258,7 @@ pub(crate) fn _reconstruct<'py>(
     let d = PyDict::new(py);
     d.set_item("points", report.points)?;
     d.set_item("outliers", report.outliers)?;
+    d.set_item("working", report.working)?;
     d.set_item("normals_estimated", report.normals_estimated)?;
     d.set_item("flipped", report.flipped)?;
     d.set_item("refuted", report.refuted)?;

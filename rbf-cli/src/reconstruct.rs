@@ -128,9 +128,14 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     if !quiet {
         let r = mesh.check();
         eprintln!(
-            "{} points read, {} outliers dropped, normals {} ({} flipped, {} reversed by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {} outliers dropped{}, normals {} ({} flipped, {} reversed by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             report.outliers,
+            if report.working < report.points - report.outliers {
+                format!(", a random {} of them worked on", report.working)
+            } else {
+                String::new()
+            },
             if report.normals_estimated {
                 "estimated"
             } else {

@@ -15,13 +15,7 @@ pub fn poisson_subset(points: &[[f64; 3]], target: usize) -> Vec<usize> {
     if points.len() <= target {
         return (0..points.len()).collect();
     }
-    // A fixed shuffle (multiplicative hashing of the index).
-    let mut order: Vec<usize> = (0..points.len()).collect();
-    order.sort_by_key(|&i| {
-        (i as u64)
-            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
-            .rotate_left(17)
-    });
+    let order = shuffled(points.len());
     let (mut lo, mut hi) = (0.0_f64, diameter(points));
     let mut best: Vec<usize> = Vec::new();
     for _ in 0..40 {
@@ -92,4 +86,16 @@ fn greedy(points: &[[f64; 3]], order: &[usize], r: f64) -> Vec<usize> {
         }
     }
     kept
+}
+
+/// 0..n in a fixed pseudo-random order (multiplicative hashing of the index): deterministic, and
+/// any prefix of it a random subset.
+pub(crate) fn shuffled(n: usize) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by_key(|&i| {
+        (i as u64)
+            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .rotate_left(17)
+    });
+    order
 }

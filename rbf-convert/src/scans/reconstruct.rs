@@ -34,6 +34,15 @@ const SMOOTH_ABOVE: f64 = 1e-3;
 /// Points the greedy fit chooses from, at most (an even spread of a denser scan).
 const THINNED: usize = 20_000;
 
+/// Points a scan is worked on, at most: a denser one is taken as a random subset of this many
+/// (after its outliers are dropped), which has its noise and its density of a scan this size.
+/// Its fit takes at most [`THINNED`] of them anyway, and its neighbourhoods, a fixed count of
+/// points, shrink as it grows denser while its noise does not: on a simulated bunny scan of
+/// 10⁶ points with noise of 0.2 % of the diagonal, taken whole, a third of the normals came
+/// out flipped and the surface with genus 215; an even spread of 2·10⁵ of them (Poisson-disk,
+/// which spreads the points through the noise's thickness too) still gave genus 52.
+const WORKING: usize = 100_000;
+
 /// The smallest default tolerance, as a fraction of the box's longest side: what a budget of
 /// a few thousand centres can meet on a detailed scan.
 const MIN_TOLERANCE: f64 = 2.5e-3;
@@ -76,6 +85,9 @@ pub struct ReconstructReport {
     pub points: usize,
     /// Points dropped as outliers.
     pub outliers: usize,
+    /// Points the normals, orientation and fit worked on: the points kept, or a random subset
+    /// of 10⁵ of them in a denser scan.
+    pub working: usize,
     /// Whether the normals were estimated (the cloud had none).
     pub normals_estimated: bool,
     /// Normals (given or estimated) whose sign the orientation reversed.
@@ -144,7 +156,7 @@ pub fn reconstruct(
         });
     }
     // Outliers first: they would bend normals and the surface alike.
-    let keep: Vec<usize> = match settings.outlier_ratio {
+    let mut keep: Vec<usize> = match settings.outlier_ratio {
         Some(ratio) => {
             let flags = statistical_outliers(&Neighbours::new(points, 20), ratio);
             (0..points.len()).filter(|&i| !flags[i]).collect()
@@ -157,9 +169,17 @@ pub fn reconstruct(
             needed: FEWEST_POINTS,
         });
     }
-    let kept: Vec<[f64; 3]> = keep.iter().map(|&i| points[i]).collect();
+    let outliers = points.len() - keep.len();
+    let mut kept: Vec<[f64; 3]> = keep.iter().map(|&i| points[i]).collect();
     if let Some(shape) = flatness(&kept) {
         return Err(ConvertError::Flat { shape });
+    }
+    if kept.len() > WORKING {
+        let mut subset = crate::poisson::shuffled(kept.len());
+        subset.truncate(WORKING);
+        subset.sort_unstable();
+        keep = subset.iter().map(|&j| keep[j]).collect();
+        kept = subset.iter().map(|&j| kept[j]).collect();
     }
     let k = settings.neighbours.max(3);
     let near = Neighbours::new(&kept, k);
@@ -334,7 +354,8 @@ pub fn reconstruct(
     }
     let summary = ReconstructReport {
         points: points.len(),
-        outliers: points.len() - kept.len(),
+        outliers,
+        working: kept.len(),
         normals_estimated: estimated,
         flipped: oriented.flipped,
         refuted,
