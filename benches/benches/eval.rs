@@ -50,7 +50,7 @@ fn eval(c: &mut Criterion) {
             b.iter(|| {
                 f64_model
                     .view()
-                    .values_and_gradients(&few, &mut values, &mut gradients)
+                    .values_and_gradients(few, &mut values, &mut gradients)
                     .expect("lengths")
             })
         },
