@@ -34,15 +34,6 @@ const SMOOTH_ABOVE: f64 = 1e-3;
 /// Points the greedy fit chooses from, at most (an even spread of a denser scan).
 const THINNED: usize = 20_000;
 
-/// Points a scan is worked on, at most: a denser one is taken as a random subset of this many
-/// (after its outliers are dropped), which has its noise and its density of a scan this size.
-/// Its fit takes at most [`THINNED`] of them anyway, and its neighbourhoods, a fixed count of
-/// points, shrink as it grows denser while its noise does not: on a simulated bunny scan of
-/// 10⁶ points with noise of 0.2 % of the diagonal, taken whole, a third of the normals came
-/// out flipped and the surface with genus 215; an even spread of 2·10⁵ of them (Poisson-disk,
-/// which spreads the points through the noise's thickness too) still gave genus 52.
-const WORKING: usize = 100_000;
-
 /// The smallest default tolerance, as a fraction of the box's longest side: what a budget of
 /// a few thousand centres can meet on a detailed scan.
 const MIN_TOLERANCE: f64 = 2.5e-3;
@@ -64,6 +55,15 @@ pub struct ReconstructSettings {
     /// Offset of the normal constraints: 1% of the box's longest side, and at least four
     /// times the measured noise.
     pub offset: NormalOffset,
+    /// The most points a scan is worked on: 10⁵. A denser one is taken as a random subset of
+    /// this many (after its outliers are dropped), which has its noise and the density of a
+    /// scan this size. Its fit takes at most 2·10⁴ of them anyway, and its neighbourhoods, a
+    /// fixed count of points, shrink as it grows denser while its noise does not: on a
+    /// simulated bunny scan of 10⁶ points with noise of 0.2 % of the diagonal, taken whole, a
+    /// third of the normals came out flipped and the surface with genus 215; 10⁵ of them,
+    /// genus 3; an even spread of 2·10⁵ (Poisson-disk, which spreads the points through the
+    /// noise's thickness too), genus 52.
+    pub working: usize,
 }
 
 impl Default for ReconstructSettings {
@@ -74,6 +74,7 @@ impl Default for ReconstructSettings {
             tolerance: None,
             max_centres: 5000,
             offset: NormalOffset::Relative(0.01),
+            working: 100_000,
         }
     }
 }
@@ -86,7 +87,7 @@ pub struct ReconstructReport {
     /// Points dropped as outliers.
     pub outliers: usize,
     /// Points the normals, orientation and fit worked on: the points kept, or a random subset
-    /// of 10⁵ of them in a denser scan.
+    /// of [`ReconstructSettings::working`] of them in a denser scan.
     pub working: usize,
     /// Whether the normals were estimated (the cloud had none).
     pub normals_estimated: bool,
@@ -174,9 +175,10 @@ pub fn reconstruct(
     if let Some(shape) = flatness(&kept) {
         return Err(ConvertError::Flat { shape });
     }
-    if kept.len() > WORKING {
+    let working = settings.working.max(FEWEST_POINTS);
+    if kept.len() > working {
         let mut subset = crate::poisson::shuffled(kept.len());
-        subset.truncate(WORKING);
+        subset.truncate(working);
         subset.sort_unstable();
         keep = subset.iter().map(|&j| keep[j]).collect();
         kept = subset.iter().map(|&j| kept[j]).collect();
