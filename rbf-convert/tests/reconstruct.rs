@@ -19,6 +19,15 @@ fn torus(n: usize) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
         .unzip()
 }
 
+/// `normals` with every third one (from the first) reversed.
+fn every_third_flipped(normals: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    normals
+        .iter()
+        .enumerate()
+        .map(|(i, n)| if i % 3 == 0 { n.map(|c| -c) } else { *n })
+        .collect()
+}
+
 fn topology(model: &rbf_core::Model<3>) -> (bool, Option<i64>, usize) {
     let settings = PolygonizeSettings {
         resolution: Resolution::Cells(64),
@@ -52,11 +61,7 @@ fn a_torus_without_normals_comes_out_closed_with_its_hole() {
 #[test]
 fn a_dense_scan_is_worked_on_as_a_subset_with_its_normals() {
     let (points, normals) = torus(12_000);
-    let given: Vec<[f64; 3]> = normals
-        .iter()
-        .enumerate()
-        .map(|(i, n)| if i % 3 == 0 { n.map(|c| -c) } else { *n })
-        .collect();
+    let given = every_third_flipped(&normals);
     let settings = ReconstructSettings {
         working: 3000,
         ..Default::default()
@@ -74,17 +79,7 @@ fn a_dense_scan_is_worked_on_as_a_subset_with_its_normals() {
 #[test]
 fn flipped_given_normals_are_fixed_before_fitting() {
     let (points, truth) = torus(3000);
-    let given: Vec<[f64; 3]> = truth
-        .iter()
-        .enumerate()
-        .map(|(i, n)| {
-            if i % 3 == 0 {
-                [-n[0], -n[1], -n[2]]
-            } else {
-                *n
-            }
-        })
-        .collect();
+    let given = every_third_flipped(&truth);
     let (model, report) =
         reconstruct(&points, Some(&given), &ReconstructSettings::default()).unwrap();
     assert!(!report.normals_estimated);

@@ -119,7 +119,7 @@ pub struct ReconstructReport {
     /// [`reconstruct`]).
     pub outside_added: usize,
     /// How far from the scan a piece of the surface may lie and still count as shown by it
-    /// (for [`crate::supported_pieces`]): one and a half times the median spacing of the points, or twice
+    /// (for [`crate::supported_pieces`]): one and a half times the median spacing of the points worked on, or twice
     /// the tolerance if that is more, in the points' units.
     pub support_reach: f64,
 }
