@@ -217,6 +217,7 @@ def reconstruct(
     normals: Optional[ArrayLike] = None,
     *,
     tolerance: Optional[float] = None,
+    smoothing: float = 1e-4,
     max_centres: int = 5000,
     keep_outliers: bool = False,
     resolution: Optional[int] = None,
@@ -226,14 +227,17 @@ def reconstruct(
     """A closed surface from a scan, as ``rbf reconstruct`` makes it: ``(vertices, faces,
     model)``, and with ``return_report`` a dict of what was done (outliers dropped, normals
     estimated and flipped (``refuted``: reversed by fits; ``disagreeing``: left out), noise,
-    centres, outside constraints added, bubbles dropped,
+    centres, ``lambda`` (0 for a greedy fit), outside constraints added, bubbles dropped,
     watertight, genus, components).
 
     ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes). Outliers
-    are dropped unless ``keep_outliers``; every normal is oriented consistently and outward;
-    greedily chosen points carry normal constraints until the surface passes within
-    ``tolerance`` (a fraction of the box's longest side; default three times the measured
-    noise, at least 2.5e-3) of every point, using at most ``max_centres``; where f is not
+    are dropped unless ``keep_outliers``; every normal is oriented consistently and outward.
+    A clean scan is followed closely: greedily chosen points carry normal constraints until
+    the surface passes within ``tolerance`` (a fraction of the box's longest side; default
+    three times the measured noise, at least 2.5e-3) of every point, using at most
+    ``max_centres``. A noisy scan (unless ``tolerance`` is given) is approximated by one
+    smoothing fit of an even spread of 10⁴ of its points, with λ = ``smoothing`` for a box
+    whose longest side is 2 (larger is smoother). Where f is not
     negative just outside the scan, outside constraints are added; the mesh is polygonized at
     ``resolution`` cubes across the box (default: about the points' spacing), without the
     bubbles that no point of the scan is near. For an open scan, ``trim`` (a distance in the
@@ -253,6 +257,7 @@ def reconstruct(
         points,
         normals,
         tolerance=tolerance,
+        smoothing=smoothing,
         max_centres=max_centres,
         keep_outliers=keep_outliers,
         resolution=resolution,

@@ -188,13 +188,14 @@ pub(crate) fn _voxelize<'py>(
 /// A scan to a closed surface (see ``rbfsurf.reconstruct``): the mesh, the model and a dict
 /// of what was done.
 #[pyfunction]
-#[pyo3(signature = (points, normals=None, *, tolerance=None, max_centres=5000, keep_outliers=false, resolution=None, trim=None))]
+#[pyo3(signature = (points, normals=None, *, tolerance=None, smoothing=1e-4, max_centres=5000, keep_outliers=false, resolution=None, trim=None))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 pub(crate) fn _reconstruct<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
     normals: Option<&Bound<'py, PyAny>>,
     tolerance: Option<f64>,
+    smoothing: f64,
     max_centres: i64,
     keep_outliers: bool,
     resolution: Option<i64>,
@@ -229,6 +230,11 @@ pub(crate) fn _reconstruct<'py>(
             "tolerance must be a finite number > 0, not {t}"
         )));
     }
+    if !(smoothing > 0.0 && smoothing.is_finite()) {
+        return Err(bad(format!(
+            "smoothing must be a finite number > 0, not {smoothing} (tolerance=T fits greedily instead)"
+        )));
+    }
     if let Some(d) = trim
         && !(d > 0.0 && d.is_finite())
     {
@@ -237,6 +243,7 @@ pub(crate) fn _reconstruct<'py>(
     let settings = ReconstructSettings {
         tolerance,
         max_centres: count(max_centres, 10..=1_000_000, "max_centres")?,
+        smoothing,
         outlier_ratio: (!keep_outliers).then_some(2.5),
         ..Default::default()
     };
@@ -268,6 +275,8 @@ pub(crate) fn _reconstruct<'py>(
     d.set_item("noise", report.noise)?;
     d.set_item("tolerance", report.tolerance)?;
     d.set_item("centres", report.centres)?;
+    d.set_item("lambda", report.lambda)?;
+    d.set_item("beyond_tolerance", report.beyond_tolerance)?;
     d.set_item("largest_miss", report.largest_miss)?;
     d.set_item("within_tolerance", report.within_tolerance)?;
     d.set_item("resolution", resolution)?;

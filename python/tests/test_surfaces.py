@@ -168,6 +168,21 @@ def test_reconstruct_trims_to_the_points_and_refuses_a_bad_distance():
             rbfsurf.reconstruct(upper, trim=bad)
 
 
+def test_reconstruct_smooths_a_noisy_scan_and_refuses_a_bad_smoothing():
+    points = torus_lattice(12000)
+    sigma = 0.004 * np.linalg.norm([2.8, 2.8, 0.8])
+    noisy = points + np.random.default_rng(5).normal(scale=sigma, size=points.shape)
+    vertices, _, _, report = rbfsurf.reconstruct(noisy, resolution=64, return_report=True)
+    assert report["lambda"] > 0 and 9000 <= report["centres"] <= 10000
+    assert (report["watertight"], report["genus"], report["components"]) == (True, 1, 1)
+    # The surface passes through the middle of the noise, not through its extremes.
+    tube = np.hypot(np.hypot(vertices[:, 0], vertices[:, 1]) - 1, vertices[:, 2])
+    assert np.sqrt(np.mean((tube - 0.4) ** 2)) < sigma / 2
+    for bad in (0.0, -1e-4, float("nan"), float("inf")):
+        with pytest.raises(rbfsurf.RbfError, match="smoothing"):
+            rbfsurf.reconstruct(noisy, smoothing=bad)
+
+
 def test_reconstruct_refuses_a_flat_cloud():
     flat = np.c_[np.arange(400) % 20, np.arange(400) // 20, np.zeros(400)].astype(float)
     with pytest.raises(rbfsurf.RbfError, match="lie on a plane"):

@@ -18,10 +18,12 @@ every normal oriented consistently and outward (a minimum spanning tree of the n
 given normals are checked the same way and flipped ones fixed). A noisy scan is smoothed first:
 its noise is measured on neighbourhoods grown until they reach four times it, each point moves
 onto the plane of such a neighbourhood, and coarse fits to the other points vote on each
-normal's sign. Normals more than 60° from their neighbours' are left out. A subset of the
-points chosen greedily then carries normal constraints until the surface passes within the
-tolerance of every point: three times the measured noise unless given, so
-a clean scan is followed closely and a noisy one smoothly. Holes are closed by the implicit
+normal's sign. Normals more than 60° from their neighbours' are left out. A clean scan is then
+followed closely: a subset of its points chosen greedily carries normal constraints until the
+surface passes within the tolerance of every point (three times the measured noise, at least
+2.5e-3 of the box). A noisy scan is approximated instead: an even spread of 10⁴ of its
+smoothed points carries normal constraints in one smoothing fit (λ, --smoothing), which passes
+through the middle of the noise; --tolerance asks for the greedy fit. Holes are closed by the implicit
 surface itself, and where f is not negative just outside the scan, outside constraints hold it
 down. The mesh is polygonized with cubes about one point spacing wide (thin parts keep their
 topology), without bubbles that no point is near; --trim D keeps only the surface within D of
@@ -33,7 +35,8 @@ Clouds: .ply (ASCII or binary, with or without nx ny nz), .npy (N × 3 or N × 6
 Examples:
   rbf reconstruct scan.ply -o surface.obj
   rbf reconstruct scan.xyz -o surface.ply --model scan.json --resolution 256
-  rbf reconstruct noisy.npy -o smooth.stl --tolerance 0.005
+  rbf reconstruct noisy.npy -o smooth.stl --smoothing 1e-3   (smoother than the default)
+  rbf reconstruct noisy.npy -o close.stl --tolerance 0.005   (greedy, within 0.5 % of the box)
   rbf reconstruct face.ply -o face.obj --trim 2.5   (an open scan, in millimetres)";
 
 #[derive(Args, Debug)]
@@ -53,9 +56,13 @@ pub(crate) struct ReconstructArgs {
     /// [default: three times the measured noise, at least 2.5e-3].
     #[arg(long, value_name = "T")]
     tolerance: Option<f64>,
-    /// The most points that carry constraints.
+    /// The most points that carry constraints in a greedy fit.
     #[arg(long, value_name = "N", default_value_t = 5000)]
     max_centres: usize,
+    /// λ of a noisy scan's smoothing fit, for a box whose longest side is 2: larger is
+    /// smoother, smaller follows the points more closely.
+    #[arg(long, value_name = "L", default_value_t = 1e-4)]
+    smoothing: f64,
     /// Keep every point (no outlier removal).
     #[arg(long)]
     keep_outliers: bool,
@@ -83,6 +90,15 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             format!("--trim {d}: the distance must be a finite number > 0"),
         ));
     }
+    if !(args.smoothing > 0.0 && args.smoothing.is_finite()) {
+        return Err(Failure::new(
+            USAGE,
+            format!(
+                "--smoothing {}: λ must be a finite number > 0 (--tolerance T fits greedily instead)",
+                args.smoothing
+            ),
+        ));
+    }
     if args.max_centres < 10 {
         return Err(Failure::new(
             USAGE,
@@ -97,6 +113,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     let settings = ReconstructSettings {
         tolerance: args.tolerance,
         max_centres: args.max_centres,
+        smoothing: args.smoothing,
         outlier_ratio: (!args.keep_outliers).then_some(2.5),
         ..Default::default()
     };
@@ -127,8 +144,12 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     }
     if !quiet {
         let r = mesh.check();
+        let beyond = format!(
+            " ({} point(s) beyond the tolerance; a lower --smoothing follows the points more closely)",
+            report.beyond_tolerance
+        );
         eprintln!(
-            "{} points read, {} outliers dropped{}, normals {} ({} flipped, {} reversed by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {} outliers dropped{}, normals {} ({} flipped, {} reversed by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             report.outliers,
             if report.working < report.points - report.outliers {
@@ -148,11 +169,18 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.noise,
             report.tolerance,
             report.centres,
-            report.largest_miss,
-            if report.within_tolerance {
-                ""
+            if report.lambda > 0.0 {
+                format!(" in a smoothing fit (λ {:.1e})", report.lambda)
             } else {
-                " (above the tolerance: the centre budget ran out; raise --max-centres)"
+                String::new()
+            },
+            report.largest_miss,
+            match (report.within_tolerance, report.lambda > 0.0) {
+                (true, _) => "",
+                (false, false) => {
+                    " (above the tolerance: the centre budget ran out; raise --max-centres)"
+                }
+                (false, true) => &beyond,
             },
             report.outside_added,
             r.triangles,

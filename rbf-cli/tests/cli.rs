@@ -1988,5 +1988,21 @@ fn reconstruct_a_cloud_without_normals_and_refuse_a_flat_one() {
         assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
         assert!(stderr(&o).contains("--trim"), "{}", stderr(&o));
         assert!(!out.exists());
+    } // A smoothing that is no λ is refused the same way.
+    for bad in ["0", "-1e-4", "nan", "inf"] {
+        let out = dir.path().join(format!("smoothing-{bad}.obj"));
+        let o = rbf(
+            &[
+                "reconstruct",
+                cloud.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+                &format!("--smoothing={bad}"),
+            ],
+            None,
+        );
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+        assert!(stderr(&o).contains("--smoothing"), "{}", stderr(&o));
+        assert!(!out.exists());
     }
 }

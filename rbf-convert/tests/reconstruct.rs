@@ -28,6 +28,28 @@ fn every_third_flipped(normals: &[[f64; 3]]) -> Vec<[f64; 3]> {
         .collect()
 }
 
+/// `points` each moved by Gaussian noise of deviation `sigma` along every axis (Box–Muller from
+/// a fixed integer hash: the same noise at every run).
+fn with_noise(points: &[[f64; 3]], sigma: f64) -> Vec<[f64; 3]> {
+    let uniform = |k: u64| {
+        let x = k.wrapping_mul(0x9E37_79B9_7F4A_7C15).rotate_left(29) ^ 0xD1B5_4A32_D192_ED03;
+        ((x.wrapping_mul(0xBF58_476D_1CE4_E5B9) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    };
+    let gaussian = |k: u64| {
+        (-2.0 * uniform(2 * k).ln()).sqrt() * (std::f64::consts::TAU * uniform(2 * k + 1)).cos()
+    };
+    points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| core::array::from_fn(|d| p[d] + sigma * gaussian((3 * i + d) as u64)))
+        .collect()
+}
+
+/// Distance from `p` to the torus of [`torus`].
+fn off_torus(p: &[f64; 3]) -> f64 {
+    (((p[0].hypot(p[1]) - 1.0).powi(2) + p[2] * p[2]).sqrt() - 0.4).abs()
+}
+
 fn topology(model: &rbf_core::Model<3>) -> (bool, Option<i64>, usize) {
     let settings = PolygonizeSettings {
         resolution: Resolution::Cells(64),
@@ -159,11 +181,7 @@ fn a_scan_with_holes_uneven_density_and_outliers_comes_out_one_closed_torus() {
         (Some(1), 1),
         "{report:?}, {dropped} dropped"
     );
-    let worst = mesh
-        .positions()
-        .iter()
-        .map(|p| (((p[0].hypot(p[1]) - 1.0).powi(2) + p[2] * p[2]).sqrt() - 0.4).abs())
-        .fold(0.0, f64::max);
+    let worst = mesh.positions().iter().map(off_torus).fold(0.0, f64::max);
     assert!(worst < 0.05, "a vertex {worst} from the torus");
 }
 
@@ -175,19 +193,7 @@ fn a_scan_with_holes_uneven_density_and_outliers_comes_out_one_closed_torus() {
 fn a_noisy_scan_comes_out_one_smooth_closed_torus() {
     let (clean, _) = torus(12_000);
     let sigma = 0.006 * (2.8f64 * 2.8 * 2.0 + 0.8 * 0.8).sqrt();
-    // Gaussian noise by Box–Muller from a fixed integer hash.
-    let uniform = |k: u64| {
-        let x = k.wrapping_mul(0x9E37_79B9_7F4A_7C15).rotate_left(29) ^ 0xD1B5_4A32_D192_ED03;
-        ((x.wrapping_mul(0xBF58_476D_1CE4_E5B9) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    };
-    let gaussian = |k: u64| {
-        (-2.0 * uniform(2 * k).ln()).sqrt() * (std::f64::consts::TAU * uniform(2 * k + 1)).cos()
-    };
-    let points: Vec<[f64; 3]> = clean
-        .iter()
-        .enumerate()
-        .map(|(i, p)| core::array::from_fn(|d| p[d] + sigma * gaussian((3 * i + d) as u64)))
-        .collect();
+    let points = with_noise(&clean, sigma);
     let (model, report) = reconstruct(&points, None, &ReconstructSettings::default()).unwrap();
     let measured = report.noise * 2.8;
     assert!(
@@ -198,10 +204,45 @@ fn a_noisy_scan_comes_out_one_smooth_closed_torus() {
     let r = mesh.check();
     assert!(r.is_watertight(), "{r:?}");
     assert_eq!((r.genus, r.components), (Some(1), 1), "{report:?}");
-    let worst = mesh
-        .positions()
-        .iter()
-        .map(|p| (((p[0].hypot(p[1]) - 1.0).powi(2) + p[2] * p[2]).sqrt() - 0.4).abs())
-        .fold(0.0, f64::max);
+    let worst = mesh.positions().iter().map(off_torus).fold(0.0, f64::max);
     assert!(worst < 4.0 * sigma, "a vertex {worst} from the torus");
+}
+
+/// A noisy scan is approximated by a smoothing fit, which passes through the middle of the
+/// noise: its surface lies within a third of the noise's deviation of the torus (RMS over the
+/// mesh's vertices), and closer than the greedy fit that a tolerance asks for, which passes
+/// through the points the noise put farthest out first (its worst vertex a fifth closer).
+#[test]
+fn a_smoothing_fit_passes_through_the_middle_of_the_noise() {
+    let (clean, _) = torus(20_000);
+    let sigma = 0.004 * (2.8f64 * 2.8 * 2.0 + 0.8 * 0.8).sqrt();
+    let points = with_noise(&clean, sigma);
+    let rms_off = |settings: &ReconstructSettings| {
+        let (model, report) = reconstruct(&points, None, settings).unwrap();
+        let (mesh, _) = rbf_convert::scan_mesh(&model, &report, &points, 96).unwrap();
+        let r = mesh.check();
+        assert!(r.is_watertight(), "{r:?}");
+        assert_eq!((r.genus, r.components), (Some(1), 1), "{report:?}");
+        let v = mesh.positions();
+        let rms = (v.iter().map(|p| off_torus(p).powi(2)).sum::<f64>() / v.len() as f64).sqrt();
+        let worst = v.iter().map(off_torus).fold(0.0, f64::max);
+        (rms, worst, report)
+    };
+    let (smooth, smooth_worst, report) = rms_off(&ReconstructSettings::default());
+    assert!(report.lambda > 0.0, "{report:?}");
+    assert!((9000..=10_000).contains(&report.centres), "{report:?}");
+    assert!(
+        smooth < sigma / 3.0,
+        "RMS {smooth} off the torus, noise {sigma}"
+    );
+    let greedy = ReconstructSettings {
+        tolerance: Some(report.tolerance),
+        ..Default::default()
+    };
+    let (fitted, fitted_worst, greedy_report) = rms_off(&greedy);
+    assert_eq!(greedy_report.lambda, 0.0);
+    assert!(
+        smooth < fitted && smooth_worst < 0.8 * fitted_worst,
+        "smoothing fit {smooth} (worst {smooth_worst}), greedy fit {fitted} (worst {fitted_worst}) off the torus"
+    );
 }
