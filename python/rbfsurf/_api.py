@@ -226,7 +226,8 @@ def reconstruct(
 ) -> Union[Tuple[np.ndarray, np.ndarray, Model], Tuple[np.ndarray, np.ndarray, Model, dict]]:
     """A closed surface from a scan, as ``rbf reconstruct`` makes it: ``(vertices, faces,
     model)``, and with ``return_report`` a dict of what was done (outliers dropped, normals
-    estimated and flipped (``refuted``: reversed by fits; ``disagreeing``: left out), noise,
+    estimated and flipped (``reversed_by_winding``: by the winding number of the others;
+    ``refuted``: reversed by fits; ``disagreeing``: left out), noise,
     centres, ``lambda`` (0 for a greedy fit), outside constraints added, bubbles dropped,
     watertight, genus, components).
 

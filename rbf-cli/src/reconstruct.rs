@@ -17,8 +17,9 @@ the cloud's), normals estimated from local planes where the cloud has none (16 n
 every normal oriented consistently and outward (a minimum spanning tree of the neighbour graph;
 given normals are checked the same way and flipped ones fixed). A noisy scan is smoothed first:
 its noise is measured on neighbourhoods grown until they reach four times it, each point moves
-onto the plane of such a neighbourhood, and coarse fits to the other points vote on each
-normal's sign. Normals more than 60° from their neighbours' are left out. A clean scan is then
+onto the plane of such a neighbourhood, and each normal's sign is checked by the winding
+number of the other points (at probes inside and outside along it), then voted on by coarse
+fits to them. Normals more than 60° from their neighbours' are left out. A clean scan is then
 followed closely: a subset of its points chosen greedily carries normal constraints until the
 surface passes within the tolerance of every point (three times the measured noise, at least
 2.5e-3 of the box). A noisy scan is approximated instead: an even spread of 10⁴ of its
@@ -149,7 +150,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.beyond_tolerance
         );
         eprintln!(
-            "{} points read, {} outliers dropped{}, normals {} ({} flipped, {} reversed by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             report.outliers,
             if report.working < report.points - report.outliers {
@@ -163,6 +164,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
                 "given"
             },
             report.flipped,
+            report.reversed_by_winding,
             report.refuted,
             report.disagreeing,
             report.pieces,

@@ -1,8 +1,9 @@
 //! Scans to surfaces: a point cloud becomes an implicit surface (`reconstruct.rs`), with its
-//! normals checked by fits to the other points (`consensus.rs`), and then a mesh that keeps to
-//! what the scan shows (`support.rs`).
+//! normals checked by the winding number of the other points (`dipoles.rs`) and by fits to
+//! them (`consensus.rs`), and then a mesh that keeps to what the scan shows (`support.rs`).
 
 mod consensus;
+mod dipoles;
 mod reconstruct;
 mod support;
 
