@@ -374,6 +374,30 @@ pub fn reconstruct(
             .zip(reach)
             .map(|(&q, r)| Constraint::exterior(q, -r.max(distance) / distance)),
     );
+    // And the points of a lattice over that box that lie away from the scan and outside it by
+    // the winding number of the oriented points: a surface can balloon out of a hole or over a
+    // sparse region where no point's offset probes (measured: a clean cow scan, a bulge 18.7 %
+    // of the diagonal high over 12 % of the surface, out of a hole at the head).
+    let lattice: Vec<[f64; 3]> = grown_box_lattice(&kept, longest, LATTICE);
+    let reach = rbf_cloud::distances_to_cloud(&spread_points, &lattice);
+    let away: Vec<([f64; 3], f64)> = lattice
+        .into_iter()
+        .zip(reach)
+        .filter(|&(_, r)| r > AWAY * distance)
+        .collect();
+    let probes: Vec<[f64; 3]> = away.iter().map(|&(q, _)| q).collect();
+    let winding = super::dipoles::winding_field(
+        &spread_points,
+        &spread_normals,
+        &Neighbours::new(&spread_points, 8),
+        &probes,
+    );
+    outside.extend(
+        away.iter()
+            .zip(winding)
+            .filter(|&(_, w)| w < OUTSIDE_WINDING)
+            .map(|(&(q, r), _)| Constraint::exterior(q, -r / distance)),
+    );
     let at: Vec<[f64; 3]> = outside.iter().map(|c| c.position).collect();
     let mut added = vec![false; outside.len()];
     let mut values = vec![0.0; at.len()];
@@ -486,11 +510,39 @@ fn distances_to_zero_set(f: &rbf_core::Interpolant<f64, 3>, points: &[[f64; 3]])
         .collect()
 }
 
+/// Points per side of the lattice of outside probes.
+const LATTICE: usize = 24;
+
+/// Lattice probes count as away from the scan beyond this many normal offsets.
+const AWAY: f64 = 2.0;
+
+/// Lattice probes count as outside where the winding number is below this.
+const OUTSIDE_WINDING: f64 = 0.25;
+
+/// The `n` × `n` × `n` lattice inside the points' box grown as for [`grown_box_shell`]: the
+/// box cut in `n` + 1 slices along each axis, the points where the inner cuts meet.
+fn grown_box_lattice(points: &[[f64; 3]], longest: f64, n: usize) -> Vec<[f64; 3]> {
+    let (lo, hi) = grown_box(points, longest);
+    let step = |d: usize, i: usize| lo[d] + (hi[d] - lo[d]) * (i + 1) as f64 / (n + 1) as f64;
+    (0..n * n * n)
+        .map(|i| [step(0, i % n), step(1, i / n % n), step(2, i / (n * n))])
+        .collect()
+}
+
+/// The points' box grown by a fifth of each side (at least a twenty-fifth of the longest).
+fn grown_box(points: &[[f64; 3]], longest: f64) -> ([f64; 3], [f64; 3]) {
+    let (lo, hi) = bounds(points);
+    let pad: [f64; 3] = core::array::from_fn(|d| 0.2 * (hi[d] - lo[d]).max(0.2 * longest));
+    (
+        core::array::from_fn(|d| lo[d] - pad[d]),
+        core::array::from_fn(|d| hi[d] + pad[d]),
+    )
+}
+
 /// The 26 points of the 3 × 3 × 3 grid over the points' box grown by a fifth of each side (at
 /// least a twenty-fifth of the longest), but its centre.
 fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
-    let (lo, hi) = bounds(points);
-    let pad: [f64; 3] = core::array::from_fn(|d| 0.2 * (hi[d] - lo[d]).max(0.2 * longest));
+    let (lo, hi) = grown_box(points, longest);
     let mut out = Vec::with_capacity(26);
     for i in 0..27 {
         let steps = [i % 3, i / 3 % 3, i / 9];
@@ -498,8 +550,7 @@ fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
             continue;
         }
         out.push(core::array::from_fn(|d| {
-            let (a, b) = (lo[d] - pad[d], hi[d] + pad[d]);
-            a + 0.5 * steps[d] as f64 * (b - a)
+            lo[d] + 0.5 * steps[d] as f64 * (hi[d] - lo[d])
         }));
     }
     out
