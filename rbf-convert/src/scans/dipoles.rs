@@ -148,6 +148,41 @@ mod tests {
             .unzip()
     }
 
+    /// The winding field is about 1 inside and 0 outside, with the areas each point stands for
+    /// taken from its neighbours: also where one half of the scan is four times as dense as the
+    /// other (the lattice probes count a point as outside below 0.25).
+    #[test]
+    fn the_winding_field_is_one_inside_and_zero_outside_of_an_uneven_scan() {
+        let n = 8000;
+        let (points, normals): (Vec<[f64; 3]>, Vec<[f64; 3]>) = (0..n)
+            .map(|i| {
+                let z = 1.0 - (2 * i + 1) as f64 / n as f64;
+                let t = 2.399963 * i as f64;
+                let s = (1.0 - z * z).sqrt();
+                [s * t.cos(), s * t.sin(), z]
+            })
+            .enumerate()
+            .filter(|&(i, p)| p[0] > 0.0 || i % 4 == 0)
+            .map(|(_, p)| (p, p))
+            .unzip();
+        let probes: Vec<[f64; 3]> = (0..200)
+            .map(|i| {
+                let r = if i % 2 == 0 { 0.6 } else { 1.6 };
+                let (a, b) = (0.7 * i as f64, 1.3 * i as f64);
+                [r * a.cos() * b.sin(), r * a.sin() * b.sin(), r * b.cos()]
+            })
+            .collect();
+        let near = rbf_cloud::Neighbours::new(&points, 8);
+        let w = super::winding_field(&points, &normals, &near, &probes);
+        for (i, w) in w.iter().enumerate() {
+            if i % 2 == 0 {
+                assert!((0.85..1.15).contains(w), "inside {:?}: {w}", probes[i]);
+            } else {
+                assert!(w.abs() < 0.1, "outside {:?}: {w}", probes[i]);
+            }
+        }
+    }
+
     #[test]
     fn a_flipped_patch_is_turned_back_and_right_normals_are_left_alone() {
         let (points, truth) = torus(6000);
