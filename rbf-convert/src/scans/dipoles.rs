@@ -14,6 +14,8 @@
 
 use rbf_cloud::{Neighbours, clear_offsets};
 
+use super::reconstruct::unit;
+
 /// The probes reach at most this fraction of the box's longest side from their point.
 const REACH: f64 = 0.1;
 
@@ -21,17 +23,17 @@ const REACH: f64 = 0.1;
 const CLOSEST: f64 = 2.0;
 
 /// Flips the normals of `points` whose inward probe sees less winding number than their
-/// outward one; returns how many. `longest` is the
-/// box's longest side.
+/// outward one; returns how many. `near` holds the points' eight nearest neighbours (see
+/// [`winding_field`]) and `longest` is the box's longest side.
 pub(crate) fn flip_against_winding(
     points: &[[f64; 3]],
     normals: &mut [[f64; 3]],
+    near: &Neighbours,
     longest: f64,
 ) -> usize {
     if points.len() < 100 {
         return 0;
     }
-    let near = Neighbours::new(points, 8);
     let mut nearest: Vec<f64> = (0..near.len())
         .filter_map(|i| near.distances_of(i).first().copied())
         .collect();
@@ -55,7 +57,7 @@ pub(crate) fn flip_against_winding(
             ]
         })
         .collect();
-    let field = winding_field(points, normals, &near, &probes);
+    let field = winding_field(points, normals, near, &probes);
     // The gap inward minus outward: about 1 where a normal is right, −1 where it is wrong. On a
     // simulated torus scan at 0.5 % noise, every one of the 187 gaps below 0 belonged to a
     // wrong normal, and 1 of the 9139 above. Where most gaps are not positive, the field says
@@ -118,15 +120,6 @@ fn winding_numbers(points: &[[f64; 3]], moments: &[[f64; 3]], probes: &[[f64; 3]
         .collect()
 }
 
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    if l > 0.0 && l.is_finite() {
-        v.map(|c| c / l)
-    } else {
-        [0.0; 3]
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::flip_against_winding;
@@ -187,7 +180,8 @@ mod tests {
     fn a_flipped_patch_is_turned_back_and_right_normals_are_left_alone() {
         let (points, truth) = torus(6000);
         let mut normals = truth.clone();
-        assert_eq!(flip_against_winding(&points, &mut normals, 2.8), 0);
+        let near = rbf_cloud::Neighbours::new(&points, 8);
+        assert_eq!(flip_against_winding(&points, &mut normals, &near, 2.8), 0);
         assert_eq!(normals, truth);
         // A patch as propagation leaves them: every normal within 0.45 of a point on the
         // tube's outer equator reversed (3 % of them, a coherent region a coarse fit
@@ -205,7 +199,7 @@ mod tests {
         for &i in &patch {
             normals[i] = normals[i].map(|c| -c);
         }
-        let flipped = flip_against_winding(&points, &mut normals, 2.8);
+        let flipped = flip_against_winding(&points, &mut normals, &near, 2.8);
         assert_eq!(flipped, patch.len());
         assert_eq!(normals, truth);
     }

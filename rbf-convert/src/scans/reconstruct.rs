@@ -298,18 +298,25 @@ pub fn reconstruct(
         NormalOffset::Absolute(a) => a,
     };
     // A noisy scan's orientation goes wrong in patches (where it is thin, where noise hides
-    // its edges): fits to its points vote on every point's sign, until few change.
-    let mut refuted = 0;
-    // Patches that propagation oriented the wrong way (a coarse fit through them follows
-    // them) are turned back first by the winding number of the rest of the scan.
+    // its edges). The winding number of the rest of the scan turns them back first (a coarse
+    // fit through a patch follows it); then fits to its points vote on every point's sign,
+    // until few change.
+    let spread_near = Neighbours::new(&spread_points, 8);
     let mut reversed_by_winding = 0;
+    let mut refuted = 0;
     if noise > SMOOTH_ABOVE {
         for _ in 0..WINDING_PASSES {
-            reversed_by_winding +=
-                super::dipoles::flip_against_winding(&spread_points, &mut spread_normals, longest);
+            let now = super::dipoles::flip_against_winding(
+                &spread_points,
+                &mut spread_normals,
+                &spread_near,
+                longest,
+            );
+            reversed_by_winding += now;
+            if now == 0 {
+                break;
+            }
         }
-    }
-    if noise > SMOOTH_ABOVE {
         for _ in 0..CONSENSUS_PASSES {
             let now = super::consensus::flip_against_fits(
                 &spread_points,
@@ -334,17 +341,15 @@ pub fn reconstruct(
         lambda,
         ..fit_settings
     };
-    let (mut fit, report, strays, largest_miss) = if smooth_fit {
-        smoothing_fit(&constraints, &fit_settings, tolerance * longest)?
+    let (mut fit, report, beyond_tolerance, largest_miss) = if smooth_fit {
+        let (fit, report, beyond, largest) =
+            smoothing_fit(&constraints, &fit_settings, tolerance * longest)?;
+        (fit, report, beyond, largest / longest)
     } else {
         let (fit, report) = rbf_solve::fit_greedy(&constraints, &fit_settings, &greedy, |_| {})?;
-        let miss = report
-            .rounds
-            .last()
-            .map_or(f64::NAN, |r| r.max_error * longest);
+        let miss = report.rounds.last().map_or(f64::NAN, |r| r.max_error);
         (fit, report, 0, miss)
     };
-    let largest_miss = largest_miss / longest;
     // Normal constraints pin f just inside each chosen point, but nothing holds it negative
     // outside: where data is thin (ears, holes, sparse regions) the surface may bulge out
     // (measured on a simulated bunny scan with holes and uneven density: a bulge over the ears
@@ -386,12 +391,8 @@ pub fn reconstruct(
         .filter(|&(_, r)| r > AWAY * distance)
         .collect();
     let probes: Vec<[f64; 3]> = away.iter().map(|&(q, _)| q).collect();
-    let winding = super::dipoles::winding_field(
-        &spread_points,
-        &spread_normals,
-        &Neighbours::new(&spread_points, 8),
-        &probes,
-    );
+    let winding =
+        super::dipoles::winding_field(&spread_points, &spread_normals, &spread_near, &probes);
     outside.extend(
         away.iter()
             .zip(winding)
@@ -448,7 +449,7 @@ pub fn reconstruct(
         reversed_by_winding,
         disagreeing,
         contradicted: report.contradicted,
-        beyond_tolerance: strays,
+        beyond_tolerance,
         pieces: oriented.components,
         noise,
         tolerance,
@@ -556,8 +557,8 @@ fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
     out
 }
 
-/// Passes of [`super::dipoles::flip_against_winding`] over a noisy scan: the second takes the
-/// few that the first's flips made clear (on a torus at 0.5 % noise, 253 then 1).
+/// Passes of [`super::dipoles::flip_against_winding`] over a noisy scan, at most: the second
+/// takes the few that the first's flips made clear (on a torus at 0.5 % noise, 253 then 1).
 const WINDING_PASSES: usize = 2;
 
 /// Passes of [`super::consensus::flip_against_fits`] over a noisy scan, at most; they stop
@@ -568,7 +569,7 @@ const CONSENSUS_PASSES: usize = 3;
 const OUTSIDE_ROUNDS: usize = 8;
 const OUTSIDE_PER_ROUND: usize = 400;
 
-fn unit(v: [f64; 3]) -> [f64; 3] {
+pub(super) fn unit(v: [f64; 3]) -> [f64; 3] {
     let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     if l > 0.0 && l.is_finite() {
         [v[0] / l, v[1] / l, v[2] / l]
