@@ -111,7 +111,8 @@ pub struct ReconstructReport {
     /// inward (after the orientation; see [`reconstruct`]).
     pub refuted: usize,
     /// Normals of a noisy scan reversed because the winding number of the other points says
-    /// they point inward (at probes along each normal, before the fits vote).
+    /// they point inward (at probes along each normal, whole patches of them and then point
+    /// by point, before the fits vote).
     pub reversed_by_winding: usize,
     /// Points left out of the constraints because their normal is more than 60° from the
     /// mean of their neighbours'.
@@ -298,12 +299,14 @@ pub fn reconstruct(
         NormalOffset::Absolute(a) => a,
     };
     // A noisy scan's orientation goes wrong in patches (where it is thin, where noise hides
-    // its edges). The winding number of the rest of the scan turns them back first (a coarse
-    // fit through a patch follows it); then fits to its points vote on every point's sign,
-    // until few change.
+    // its edges). The winding number of the rest of the scan turns them back first, whole
+    // patches and then single points (a coarse fit through a patch follows it); then fits to
+    // its points vote on every point's sign, until few change.
     let spread_near = Neighbours::new(&spread_points, 8);
     let mut reversed_by_winding = 0;
     let mut refuted = 0;
+    reversed_by_winding +=
+        super::patches::flip_patches(&spread_points, &mut spread_normals, &spread_near, longest);
     if noise > SMOOTH_ABOVE {
         for _ in 0..WINDING_PASSES {
             let now = super::dipoles::flip_against_winding(
