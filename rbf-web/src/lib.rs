@@ -21,6 +21,7 @@
 //! ```
 
 mod bindings;
+mod single;
 mod studio;
 
 pub use bindings::{WebStudio, coarse_cells, fine_cells};

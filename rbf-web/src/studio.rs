@@ -180,6 +180,8 @@ impl Studio {
     pub fn remesh(&mut self, cells: usize) -> Result<(), StudioError> {
         let model = self.session.model();
         let view = model.interpolant.view();
+        // Values and gradients in f32 (four SIMD lanes, not two): see `single.rs`.
+        let field = crate::single::SinglePrecision::new(&model.interpolant);
         let seeds = surface_seeds(&model);
         let polygonize = |resolution: usize, bounds: Option<([f64; 3], [f64; 3])>| {
             let settings = PolygonizeSettings {
@@ -187,7 +189,7 @@ impl Studio {
                 bounds,
                 ..Default::default()
             };
-            polygonize_continuation(&view, &seeds, &settings)
+            polygonize_continuation(&field, &seeds, &settings)
         };
         // Scouting first in the centres' box grown by the usual margin, without the faces'
         // check of `surface_box` (a sixth of the evaluations of an edit). A surface that the
@@ -199,7 +201,7 @@ impl Studio {
                 bounds,
                 ..Default::default()
             };
-            match surface_extent(&view, &seeds, &settings) {
+            match surface_extent(&field, &seeds, &settings) {
                 Ok((extent, stats)) => Ok(Some((extent, stats.cell_size))),
                 Err(MeshError::Empty) => Ok(None),
                 Err(e) => Err(e),
