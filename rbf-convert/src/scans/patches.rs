@@ -159,16 +159,18 @@ fn agreement(
     let rows: Vec<(usize, Vec<f64>)> = order
         .par_chunks(64)
         .flat_map_iter(|run| {
+            // Each run's points in patch order: one row per patch it meets.
             let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
-            for &k in run {
+            let mut row = vec![0.0; count];
+            for (n, &k) in run.iter().enumerate() {
                 let p = labels[judged[k]];
-                if rows.last().is_none_or(|(q, _)| *q != p) {
-                    rows.push((p, vec![0.0; count]));
-                }
-                let row = &mut rows.last_mut().expect("pushed above").1;
                 let (inward, outward) = (&probes[2 * k], &probes[2 * k + 1]);
                 for ((x, m), &q) in points.iter().zip(&moments).zip(labels) {
                     row[q] += solid_angle(inward, x, m) - solid_angle(outward, x, m);
+                }
+                let next = run.get(n + 1).map(|&k| labels[judged[k]]);
+                if next != Some(p) {
+                    rows.push((p, std::mem::replace(&mut row, vec![0.0; count])));
                 }
             }
             rows
