@@ -321,6 +321,9 @@ window.studio = {
     triangles: renderer.count / 3,
     lastSolveMs: engine.lastSolveMs,
     lastMeshMs: engine.lastMeshMs,
+    // WebGL on the processor: drawn without multisampling (see renderer.js).
+    softwareWebGL: renderer.software,
+    multisampled: renderer.gl.getContextAttributes().antialias,
   }),
   handles: () => handles.map((h) => ({ ...h, screen: camera.project(h.position) })),
   modelJson: () => engine.modelJson(),

@@ -62,6 +62,19 @@ test('the page has WebGL2 and draws the surface', async () => {
   assert.ok(await colours() > 50, 'the canvas is uniform: nothing was drawn');
 });
 
+test('software WebGL is recognized and draws without multisampling', async () => {
+  // Headless Chromium here has no graphics card: WebGL is SwiftShader's.
+  const name = await page.evaluate(() => {
+    const gl = document.createElement('canvas').getContext('webgl2');
+    const info = gl.getExtension('WEBGL_debug_renderer_info');
+    return gl.getParameter(info.UNMASKED_RENDERER_WEBGL);
+  });
+  assert.match(name, /SwiftShader/i, `renderer ${name}`);
+  const s = await state();
+  assert.equal(s.softwareWebGL, true);
+  assert.equal(s.multisampled, false);
+});
+
 test('a click on the surface adds a constraint there and the surface does not move', async () => {
   const before = await state();
   const { lo, hi } = await bounds();
