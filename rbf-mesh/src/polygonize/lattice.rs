@@ -178,14 +178,18 @@ pub(crate) fn number_edges(
     triangles: Vec<[u32; 3]>,
 ) -> (Vec<CrossedEdge>, Vec<[u32; 3]>) {
     use rayon::prelude::*;
-    // Sort the keys with where they came from (in parallel), then number them, dropping
+    // Sort the keys with where they came from (in parallel when many), then number them, dropping
     // repeats.
     let mut order: Vec<(u64, u32)> = edges
         .iter()
         .enumerate()
         .map(|(i, e)| (e.0, i as u32))
         .collect();
-    order.par_sort_unstable();
+    if order.len() >= super::simplify::PARALLEL_SORT {
+        order.par_sort_unstable();
+    } else {
+        order.sort_unstable();
+    }
     let mut unique: Vec<CrossedEdge> = Vec::new();
     let mut vertex_of = vec![0u32; edges.len()];
     for &(key, i) in &order {

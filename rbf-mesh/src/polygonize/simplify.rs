@@ -66,6 +66,10 @@ pub(crate) fn collapse(
     (merged, triangles)
 }
 
+/// Lists shorter than this are sorted in one thread: rayon's sort then only adds its overhead
+/// (and WebAssembly, the studio's, has one thread).
+pub(crate) const PARALLEL_SORT: usize = 1 << 16;
+
 /// Vertices in each part of [`collapse_in_parts`], at least.
 const PART: usize = 16_384;
 
@@ -201,7 +205,14 @@ fn collapse_edges(
         .map(|(a, b)| (length(a, b), a, b))
         .filter(|e| e.0 < longest)
         .collect();
-    edges.par_sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+    // Lengths are positive, so their bits sort as they do; the ends break ties, so that the
+    // order is the same whichever sort runs.
+    let key = |e: &(f64, u32, u32)| (e.0.to_bits(), e.1, e.2);
+    if edges.len() >= PARALLEL_SORT {
+        edges.par_sort_unstable_by_key(key);
+    } else {
+        edges.sort_unstable_by_key(key);
+    }
     let mut scratch = Scratch::new(positions.len());
     let mut moved = Vec::new();
     for (l, a, b) in edges {
@@ -445,7 +456,9 @@ fn collapsible(
         }
         // A short edge's collapse moves a vertex too little to matter; longer ones must not
         // make slivers.
-        if !short {
+        // A triangle left with no angle under the least is never refused (and its test takes
+        // no square root).
+        if !short && is_sliver(new.map(p)) {
             let before = largest_cosine(old.map(p));
             if largest_cosine(new.map(p)) > min_cosine().max(before) {
                 return Err(Refusal::Direction);
