@@ -230,7 +230,6 @@ fn collapse_edges(
                 positions,
                 cell,
                 &*triangles,
-                &*alive,
                 &*around,
                 from,
                 to,
@@ -276,8 +275,6 @@ struct Scratch {
     /// O(1) by taking the next mark.
     mark: Vec<u32>,
     current: u32,
-    /// The live triangles at the vertex that stays, each with its corners sorted.
-    at_to: Vec<[u32; 3]>,
 }
 
 impl Scratch {
@@ -285,7 +282,6 @@ impl Scratch {
         Self {
             mark: vec![0; vertices],
             current: 0,
-            at_to: Vec::new(),
         }
     }
 
@@ -300,21 +296,14 @@ impl Scratch {
     }
 }
 
-/// Calls `visit` for each vertex joined to v by an edge of a live triangle (a vertex once per
-/// triangle it shares with v).
-fn for_each_neighbour(
-    triangles: &[[u32; 3]],
-    alive: &[bool],
-    around: &Fans,
-    v: u32,
-    mut visit: impl FnMut(u32),
-) {
+/// Calls `visit` for each vertex joined to v by an edge (a vertex once per triangle it shares
+/// with v). The fans hold live triangles only: a collapse takes the two that vanish out of
+/// every list, a flip moves its two between lists.
+fn for_each_neighbour(triangles: &[[u32; 3]], around: &Fans, v: u32, mut visit: impl FnMut(u32)) {
     for &t in around.of(v) {
-        if alive[t as usize] {
-            for w in triangles[t as usize] {
-                if w != v {
-                    visit(w);
-                }
+        for w in triangles[t as usize] {
+            if w != v {
+                visit(w);
             }
         }
     }
@@ -324,14 +313,13 @@ fn for_each_neighbour(
 /// they are.
 fn mark_neighbours(
     triangles: &[[u32; 3]],
-    alive: &[bool],
     around: &Fans,
     v: u32,
     scratch: &mut Scratch,
 ) -> (u32, usize) {
     let m = scratch.next_mark();
     let mut count = 0;
-    for_each_neighbour(triangles, alive, around, v, |w| {
+    for_each_neighbour(triangles, around, v, |w| {
         if scratch.mark[w as usize] != m {
             scratch.mark[w as usize] = m;
             count += 1;
@@ -343,7 +331,6 @@ fn mark_neighbours(
 /// How many of the vertices joined to v by an edge carry mark `m`.
 fn count_marked_neighbours(
     triangles: &[[u32; 3]],
-    alive: &[bool],
     around: &Fans,
     v: u32,
     m: u32,
@@ -352,7 +339,7 @@ fn count_marked_neighbours(
     // Each one counted is moved to a new mark, so that it counts once.
     let counted = scratch.next_mark();
     let mut count = 0;
-    for_each_neighbour(triangles, alive, around, v, |w| {
+    for_each_neighbour(triangles, around, v, |w| {
         if scratch.mark[w as usize] == m {
             scratch.mark[w as usize] = counted;
             count += 1;
@@ -370,21 +357,18 @@ enum Refusal {
 }
 
 /// If merging `from` into `to` is allowed, the two triangles that vanish.
-#[allow(clippy::too_many_arguments)]
 fn collapsible(
     positions: &[Vec3],
     cell: f64,
     triangles: &[[u32; 3]],
-    alive: &[bool],
     around: &Fans,
     from: u32,
     to: u32,
     scratch: &mut Scratch,
 ) -> Result<[u32; 2], Refusal> {
-    let live = |t: &&u32| alive[**t as usize];
-    let (mut shared, mut sharing, mut fan) = ([0u32; 2], 0, 0);
-    for &t in around.of(from).iter().filter(live) {
-        fan += 1;
+    let fan = around.of(from);
+    let (mut shared, mut sharing) = ([0u32; 2], 0);
+    for &t in fan {
         if triangles[t as usize].contains(&to) {
             if sharing < 2 {
                 shared[sharing] = t;
@@ -397,8 +381,8 @@ fn collapsible(
     }
     // Every edge at `from` must have two triangles (no border vertex is removed): a closed fan
     // has as many triangles as neighbours, an open one a neighbour more.
-    let (ring, ring_size) = mark_neighbours(triangles, alive, around, from, scratch);
-    if ring_size != fan {
+    let (ring, ring_size) = mark_neighbours(triangles, around, from, scratch);
+    if ring_size != fan.len() {
         return Err(Refusal::Direction);
     }
     // Link condition: the ends' common neighbours are the two vertices across the edge.
@@ -408,56 +392,52 @@ fn collapsible(
             .find(|&w| w != from && w != to)
             .unwrap_or(from)
     });
-    let common = count_marked_neighbours(triangles, alive, around, to, ring, scratch);
+    let common = count_marked_neighbours(triangles, around, to, ring, scratch);
     if common != 2 || opposite[0] == opposite[1] {
         return Err(Refusal::Edge);
+    }
+    // A fold: two triangles back to back, as when a tetrahedron-like piece collapses, which
+    // the link condition alone lets through. Under it the only vertices joined to both ends
+    // are the two across, so a triangle made by the merge can only repeat one at `to` as
+    // (to, across, across), made from (from, across, across).
+    let across_both = |t: u32, v: u32| {
+        let tri = triangles[t as usize];
+        tri.contains(&v) && tri.contains(&opposite[0]) && tri.contains(&opposite[1])
+    };
+    if fan.iter().any(|&t| across_both(t, from))
+        && around.of(to).iter().any(|&t| across_both(t, to))
+    {
+        return Err(Refusal::Direction);
     }
     // No triangle may turn over or become a sliver. A triangle too small to have a reliable
     // normal of its own is compared with the area-weighted normal around `from`.
     let p = |v: u32| positions[v as usize];
     let normal_of = |t: [u32; 3]| cross(sub(p(t[1]), p(t[0])), sub(p(t[2]), p(t[0])));
-    let mut around_normal = [0.0; 3];
-    for &t in around.of(from).iter().filter(live) {
-        let n = normal_of(triangles[t as usize]);
-        for d in 0..3 {
-            around_normal[d] += n[d];
-        }
-    }
-    scratch.at_to.clear();
-    scratch
-        .at_to
-        .extend(around.of(to).iter().filter(live).map(|&u| {
-            let mut other = triangles[u as usize];
-            other.sort_unstable();
-            other
-        }));
+    let around_normal = || {
+        fan.iter().fold([0.0; 3], |sum, &t| {
+            let n = normal_of(triangles[t as usize]);
+            [sum[0] + n[0], sum[1] + n[1], sum[2] + n[2]]
+        })
+    };
     let tiny = 1e-8 * cell * cell;
     let short = norm(sub(p(from), p(to))) < SHORT * cell;
-    for &t in around.of(from).iter().filter(live) {
+    for &t in fan {
         if shared.contains(&t) {
             continue;
         }
         let old = triangles[t as usize];
         let new = old.map(|v| if v == from { to } else { v });
-        // A fold (two triangles back to back, as when a tetrahedron-like piece collapses),
-        // which the link condition alone lets through.
-        let mut sorted = new;
-        sorted.sort_unstable();
-        if scratch.at_to.contains(&sorted) {
-            return Err(Refusal::Direction);
-        }
         let (mut n_old, n_new) = (normal_of(old), normal_of(new));
         if norm(n_old) < tiny {
-            n_old = around_normal;
+            n_old = around_normal();
         }
         let (l_old, l_new) = (norm(n_old), norm(n_new));
         if !(l_new > 0.0) || dot(n_old, n_new) < 0.5 * l_old * l_new {
             return Err(Refusal::Direction);
         }
         // A short edge's collapse moves a vertex too little to matter; longer ones must not
-        // make slivers.
-        // A triangle left with no angle under the least is never refused (and its test takes
-        // no square root).
+        // make slivers. A triangle left with no angle under the least is never refused (and
+        // its test takes no square root).
         if !short && is_sliver(new.map(p)) {
             let before = largest_cosine(old.map(p));
             if largest_cosine(new.map(p)) > min_cosine().max(before) {
