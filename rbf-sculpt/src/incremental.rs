@@ -72,7 +72,7 @@ impl<const D: usize> IncrementalFit<D> {
             factor: Vec::new(),
             forward: Vec::new(),
         };
-        fit.refactor()?;
+        fit.refactor(None)?;
         Ok(fit)
     }
 
@@ -103,6 +103,12 @@ impl<const D: usize> IncrementalFit<D> {
         Ok(id)
     }
 
+    /// The ids of the D + 1 rows that carry the linear polynomial (the pivots). Replacing or
+    /// removing one of them refactors the whole system (O(n³)); any other edit is O(n²).
+    pub fn pivots(&self) -> &[usize] {
+        &self.pivots
+    }
+
     /// Removes a row.
     pub fn remove(&mut self, id: usize) -> Result<(), SculptError> {
         if self.row(id).is_none() {
@@ -110,7 +116,7 @@ impl<const D: usize> IncrementalFit<D> {
         }
         if self.pivots.contains(&id) {
             let old = self.rows[id].take();
-            return self.refactor().inspect_err(|_| self.rows[id] = old);
+            return self.refactor(None).inspect_err(|_| self.rows[id] = old);
         }
         let k = self
             .free
@@ -129,10 +135,12 @@ impl<const D: usize> IncrementalFit<D> {
         check(&row)?;
         let old = self.row(id).ok_or(SculptError::NoSuchItem(id))?;
         if self.pivots.contains(&id) {
+            // The pivots are chosen again without this row where the others allow: a handle
+            // being dragged then refactors once, not at every step.
             self.rows[id] = Some(row);
-            return self.refactor().inspect_err(|_| {
+            return self.refactor(Some(id)).inspect_err(|_| {
                 self.rows[id] = Some(old);
-                let _ = self.refactor();
+                let _ = self.refactor(None);
             });
         }
         self.remove(id)?;
@@ -309,9 +317,9 @@ impl<const D: usize> IncrementalFit<D> {
         self.forward.truncate(n);
     }
 
-    /// Chooses pivots (spread out: each farthest from the span of the previous) and factors
-    /// every other row.
-    fn refactor(&mut self) -> Result<(), SculptError> {
+    /// Chooses pivots (spread out: each farthest from the span of the previous), if possible
+    /// not `avoid`, and factors every other row.
+    fn refactor(&mut self, avoid: Option<usize>) -> Result<(), SculptError> {
         let live: Vec<usize> = (0..self.rows.len())
             .filter(|&i| self.rows[i].is_some())
             .collect();
@@ -322,9 +330,24 @@ impl<const D: usize> IncrementalFit<D> {
                 D + 1
             )));
         }
-        let mut pivots = vec![live[0]];
+        let others: Vec<usize> = live.iter().copied().filter(|&i| Some(i) != avoid).collect();
+        let pivots = self.spread_pivots(if others.len() > D { &others } else { &live });
+        match self.factor_with(pivots, &live) {
+            // The others alone lie on one plane: the avoided row is needed as a pivot.
+            Err(SculptError::Singular(_)) if avoid.is_some() => {
+                let pivots = self.spread_pivots(&live);
+                self.factor_with(pivots, &live)
+            }
+            result => result,
+        }
+    }
+
+    /// D + 1 of `candidates` (at least that many), the first and then each farthest from the
+    /// span of those before.
+    fn spread_pivots(&self, candidates: &[usize]) -> Vec<usize> {
+        let mut pivots = vec![candidates[0]];
         while pivots.len() < D + 1 {
-            let next = live
+            let next = candidates
                 .iter()
                 .copied()
                 .filter(|i| !pivots.contains(i))
@@ -332,9 +355,14 @@ impl<const D: usize> IncrementalFit<D> {
                     self.span_distance(&pivots, a)
                         .total_cmp(&self.span_distance(&pivots, b))
                 })
-                .unwrap_or(live[0]);
+                .unwrap_or(candidates[0]);
             pivots.push(next);
         }
+        pivots
+    }
+
+    /// Factors the `live` rows on these pivots.
+    fn factor_with(&mut self, pivots: Vec<usize>, live: &[usize]) -> Result<(), SculptError> {
         // B has columns [1, xₛ]; invert it by Gauss–Jordan with partial pivoting.
         let mut b: Vec<Vec<f64>> = (0..=D)
             .map(|r| {
@@ -390,7 +418,7 @@ impl<const D: usize> IncrementalFit<D> {
         self.to_pivots.clear();
         self.factor.clear();
         self.forward.clear();
-        for id in live {
+        for &id in live {
             if !self.pivots.contains(&id) {
                 self.append(id)?;
             }

@@ -99,6 +99,52 @@ proptest! {
 }
 
 #[test]
+fn a_dragged_pivot_refactors_once_and_stays_exact() {
+    // 60 points on a sphere and its centre: the first row and the extremes are the pivots.
+    let mut rows: Vec<Row<3>> = (0..60)
+        .map(|i| {
+            let z = 1.0 - 2.0 * (i as f64 + 0.5) / 60.0;
+            let (r, a) = ((1.0 - z * z).sqrt(), i as f64 * 2.399963229728653);
+            Row {
+                position: [r * a.cos(), r * a.sin(), z],
+                value: 0.0,
+            }
+        })
+        .collect();
+    rows.push(Row {
+        position: [0.0; 3],
+        value: 1.0,
+    });
+    let mut inc = IncrementalFit::new(Kernel::Cubic, &rows).unwrap();
+    let dragged = inc.pivots()[1];
+    let mut now = rows.clone();
+    for step in 1..=10 {
+        // Outward, as a drag that keeps it the farthest point.
+        let p = rows[dragged]
+            .position
+            .map(|v| v * (1.0 + 0.05 * step as f64));
+        now[dragged] = Row {
+            position: p,
+            value: 0.0,
+        };
+        inc.replace(dragged, now[dragged]).unwrap();
+        assert!(
+            !inc.pivots().contains(&dragged),
+            "step {step}: still a pivot"
+        );
+    }
+    let (got, expected) = (inc.interpolant().unwrap(), fresh(&now));
+    for k in 0..20 {
+        let x = grid_point((k * 37) % 125, [0.3, -0.2, 0.1]);
+        let (a, b) = (got.value(&x), expected.value(&x));
+        assert!(
+            (a - b).abs() < 1e-8 * (1.0 + b.abs()),
+            "{a} vs {b} at {x:?}"
+        );
+    }
+}
+
+#[test]
 fn undo_returns_the_previous_interpolant_exactly() {
     let mut s = Session::new().unwrap();
     let i = s.add_boundary([0.0, 1.4, 0.0]).unwrap();

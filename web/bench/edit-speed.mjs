@@ -41,8 +41,8 @@ for (const points of [250, 1000]) {
   await page.waitForFunction(() => window.studio?.ready === true, null, { timeout: 60000 });
   const ready = Date.now() - start;
   const result = await page.evaluate(async (n) => {
-    // A boundary item late in the list: the first few carry the affine part (pivots), whose
-    // edits refactor the whole system.
+    // A boundary item late in the list. If it carries the affine part (a pivot), its first
+    // edit refactors the whole system and hands that part to other rows.
     const h = window.studio.handles().filter((x) => x.kind === 0).at(-1);
     const times = [], solve = [], mesh = [];
     for (let k = 0; k < n; k++) {
