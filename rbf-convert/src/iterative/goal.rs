@@ -197,6 +197,67 @@ impl Goal {
         constraints
     }
 
+    /// Exterior constraints where f is positive outside the volume, which the loop's voxels
+    /// never see: the cubic kernel's f grows like r times a function of the direction far from
+    /// its centres, and a long, thin shape whose constraints lie mostly inside it can leave that
+    /// positive along its length, a second sheet a few lengths off. Rays from the volume's
+    /// centre (128 directions, 32 in 2D) are sampled from just outside it to a hundred times as far
+    /// as where they leave it; on each
+    /// ray where f > 0, at the nearest such sample, f is asked to be minus the distance to the
+    /// goal boundary. At most [`FAR_FIXES`] rays, at least 25° apart, the nearest first; none
+    /// when the far field is negative everywhere, as it is for most shapes.
+    pub(crate) fn far_field_fixes<const D: usize>(
+        &self,
+        f: &rbf_core::InterpolantView<'_, f64, D>,
+    ) -> Vec<Constraint<D>> {
+        let extent: [f64; 3] = core::array::from_fn(|d| (self.shape[d] - 1) as f64);
+        let centre = extent.map(|e| 0.5 * e);
+        let half_diagonal = 0.5 * extent.iter().map(|e| e * e).sum::<f64>().sqrt();
+        let flat_goal = self.shape[2] == 1;
+        let directions = if flat_goal {
+            circle_directions(32)
+        } else {
+            sphere_directions(128)
+        };
+        // (radius, direction) of the nearest positive sample on each ray.
+        let mut positive: Vec<(f64, [f64; 3])> = directions
+            .iter()
+            .filter_map(|&u| {
+                // Where the ray leaves the volume.
+                let exit = (0..3)
+                    .filter(|&d| u[d] != 0.0)
+                    .map(|d| 0.5 * extent[d] / u[d].abs())
+                    .fold(half_diagonal, f64::min);
+                FAR_RADII.iter().find_map(|&r| {
+                    let at = self.point(core::array::from_fn(|d| centre[d] + r * exit * u[d]));
+                    (f.value(&flat(at)) > 0.0).then_some((r * exit, u))
+                })
+            })
+            .collect();
+        positive.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut chosen: Vec<[f64; 3]> = Vec::new();
+        let mut constraints = Vec::new();
+        let apart = 25f64.to_radians().cos();
+        for (r, u) in positive {
+            let dot = |v: &[f64; 3]| (0..3).map(|d| u[d] * v[d]).sum::<f64>();
+            if chosen.len() == FAR_FIXES || chosen.iter().any(|v| dot(v) > apart) {
+                continue;
+            }
+            chosen.push(u);
+            let at: [f64; 3] = core::array::from_fn(|d| centre[d] + r * u[d]);
+            let distance = (self.boundary.iter())
+                .map(|&v| dist(self.coords(v).map(|x| x as f64), at))
+                .fold(f64::INFINITY, f64::min);
+            if distance.is_finite() && distance > 0.0 {
+                constraints.push(Constraint::exterior(
+                    flat(self.point(at)),
+                    -distance * self.h,
+                ));
+            }
+        }
+        constraints
+    }
+
     /// Follows ∇sd (direction +1 uphill, −1 downhill) voxel by voxel to a local extremum or the
     /// volume's edge; returns the end and the path length (the edge counts as longest).
     fn walk(&self, start: [usize; 3], direction: f64) -> ([usize; 3], f64) {
@@ -312,7 +373,15 @@ impl Goal {
             .zip(to_current)
             .map(|(&v, d)| (v, d, true))
             .collect();
-        errors.extend(current.iter().map(|&v| (v, self.to_boundary[v], false)));
+        // A current boundary voxel is at most its distance to the mesh's surface, plus a voxel,
+        // from the goal's boundary voxels, wherever the goal has them. Where a part thinner than
+        // a voxel passes between voxel centres the goal has none, and the distance to the
+        // nearest would count a surface hugging that part as several voxels off.
+        errors.extend(
+            current
+                .iter()
+                .map(|&v| (v, self.to_boundary[v].min(self.sd[v].abs() + 1.0), false)),
+        );
         errors
     }
 
@@ -389,6 +458,36 @@ impl Goal {
     }
 }
 
+/// Where [`Goal::far_field_fixes`] samples its rays, in multiples of the distance from the
+/// volume's centre to where the ray leaves it.
+const FAR_RADII: [f64; 7] = [1.1, 1.5, 3.0, 6.0, 12.0, 30.0, 100.0];
+
+/// The most far-field constraints one iteration adds.
+const FAR_FIXES: usize = 8;
+
+/// `n` unit vectors spread evenly over the sphere (a Fibonacci lattice).
+fn sphere_directions(n: usize) -> Vec<[f64; 3]> {
+    let turn = core::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n)
+        .map(|i| {
+            let z = 1.0 - (2 * i + 1) as f64 / n as f64;
+            let ring = (1.0 - z * z).sqrt();
+            let a = turn * i as f64;
+            [ring * a.cos(), ring * a.sin(), z]
+        })
+        .collect()
+}
+
+/// `n` unit vectors spread evenly over the circle in the xy-plane.
+fn circle_directions(n: usize) -> Vec<[f64; 3]> {
+    (0..n)
+        .map(|i| {
+            let a = core::f64::consts::TAU * i as f64 / n as f64;
+            [a.cos(), a.sin(), 0.0]
+        })
+        .collect()
+}
+
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((0..3).map(|d| (a[d] - b[d]).powi(2)).sum::<f64>()).sqrt()
 }
@@ -450,5 +549,83 @@ impl Spacing {
             }
         }
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rbf_core::{ConstraintKind, InterpolantView, Kernel};
+
+    /// The goal of a ball of radius 1 in a 24³ volume over [−1.2, 1.2]³.
+    fn ball() -> Goal {
+        let h = 0.1;
+        let mut density = Volume::filled([-1.15; 3], h, [24; 3], 0.0_f32);
+        for v in 0..density.data.len() {
+            let [i, j, k] = [v / 576, (v / 24) % 24, v % 24];
+            let c = density.centre(i, j, k);
+            let r2: f64 = c.iter().map(|x| x * x).sum();
+            density.data[v] = if r2 < 1.0 { 1.0 } else { 0.0 };
+        }
+        Goal::new(&density, &density, None).unwrap()
+    }
+
+    #[test]
+    fn a_negative_far_field_asks_for_nothing() {
+        // f = 1 − |x|³: the ball itself.
+        let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[-1.0], 1.0, [0.0; 3]).unwrap();
+        assert!(ball().far_field_fixes(&f).is_empty());
+    }
+
+    #[test]
+    fn a_positive_far_field_is_asked_negative_where_it_is_positive() {
+        // f = x − 2: positive beyond the plane x = 2, past the volume on the +x side only.
+        let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[0.0], -2.0, [1.0, 0.0, 0.0])
+            .unwrap();
+        let goal = ball();
+        let fixes = goal.far_field_fixes(&f);
+        assert!(!fixes.is_empty() && fixes.len() <= FAR_FIXES, "{fixes:?}");
+        let units: Vec<[f64; 3]> = fixes
+            .iter()
+            .map(|c| {
+                let r = c.position.iter().map(|x| x * x).sum::<f64>().sqrt();
+                c.position.map(|x| x / r)
+            })
+            .collect();
+        for (c, u) in fixes.iter().zip(&units) {
+            assert_eq!(c.kind, ConstraintKind::Exterior);
+            assert!(f.value(&c.position) > 0.0, "{c:?}");
+            assert!(
+                c.position.iter().any(|x| x.abs() > 1.2),
+                "{c:?} inside the volume"
+            );
+            // Minus the distance to the ball, within a voxel and a half.
+            let r = c.position.iter().map(|x| x * x).sum::<f64>().sqrt();
+            assert!((c.value + (r - 1.0)).abs() < 0.15, "{c:?}");
+            assert!(u[0] > 0.0, "{c:?}");
+        }
+        // Spread: no two within 25° of each other.
+        for (i, a) in units.iter().enumerate() {
+            for b in &units[..i] {
+                let cos: f64 = (0..3).map(|d| a[d] * b[d]).sum();
+                assert!(cos <= 25f64.to_radians().cos(), "{a:?} and {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_far_field_positive_every_way_gets_the_most_fixes_one_iteration_adds() {
+        // f = |x|³ − 8: positive everywhere beyond radius 2.
+        let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[1.0], -8.0, [0.0; 3]).unwrap();
+        let fixes = ball().far_field_fixes(&f);
+        // As many as one iteration may add, each where f is positive, outside the volume.
+        assert_eq!(fixes.len(), FAR_FIXES);
+        for c in &fixes {
+            assert!(f.value(&c.position) > 0.0, "{c:?}");
+            assert!(
+                c.position.iter().any(|x| x.abs() > 1.2),
+                "{c:?} inside the volume"
+            );
+        }
     }
 }

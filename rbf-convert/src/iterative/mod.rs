@@ -34,6 +34,9 @@ const POLISH_ROUNDS: usize = 2;
 /// across.
 const PROBE_REFITS: usize = 3;
 
+/// Rounds of [`settle_far_field`].
+const FAR_ROUNDS: usize = 4;
+
 /// Constraint counts, boundary errors and timings of one fit-and-refine iteration.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IterationReport {
@@ -163,7 +166,8 @@ pub fn convert_iterative(
                 constraints.extend(new);
                 fit = rbf_solve::fit(&constraints, &model.settings)?;
             }
-            if violated > 0 {
+            // A polish that leaves f positive far outside is given up.
+            if violated > 0 || !goal.far_field_fixes(&fit.interpolant.view()).is_empty() {
                 break;
             }
             let polished = Model {
@@ -360,7 +364,32 @@ fn refine_to_goal<const D: usize>(
         }
     }
     let (_, model) = best.ok_or(ConvertError::NoIteration)?;
-    Ok((model, report))
+    Ok((settle_far_field(goal, model, settings)?, report))
+}
+
+/// The kept model with f made negative where it was positive far outside the volume
+/// ([`Goal::far_field_fixes`]), a few rounds of exterior constraints there and a refit. Only
+/// the kept model is checked: an early model's far field says nothing of the last one's, and
+/// constraints added for it would only steer the loop.
+fn settle_far_field<const D: usize>(
+    goal: &Goal,
+    mut model: Model<D>,
+    settings: &IterativeSettings,
+) -> Result<Model<D>, ConvertError> {
+    for _ in 0..FAR_ROUNDS {
+        let fixes = goal.far_field_fixes(&model.interpolant.view());
+        let room = settings
+            .max_constraints
+            .saturating_sub(model.constraints.len());
+        if fixes.is_empty() || room == 0 {
+            break;
+        }
+        model.constraints.extend(fixes.into_iter().take(room));
+        let fit = rbf_solve::fit(&model.constraints, &model.settings)?;
+        model.interpolant = fit.interpolant;
+        model.report = Some(fit.report);
+    }
+    Ok(model)
 }
 
 /// How the loop ranks its models, best first: those close to the mesh (a maximum error within
