@@ -6,7 +6,8 @@
 //! consistent orientation over a minimum spanning tree of the neighbour graph
 //! ([`orient_normals`], Hoppe et al. 1992 with König & Gumhold 2009's edge weights), how far
 //! off the surface each point may place constraints ([`clear_offsets`]), and how far points
-//! are from the cloud ([`distances_to_cloud`]). No solver
+//! are from the cloud ([`distances_to_cloud`]), all through one k-d tree type ([`PointTree`],
+//! which other crates' searches share). No solver
 //! lives here: the reconstruction pipeline takes these and fits.
 //!
 //! ```
@@ -33,10 +34,12 @@ mod normals;
 mod offsets;
 mod orientation;
 mod outliers;
+mod tree;
 
 pub use distance::distances_to_cloud;
 pub use neighbours::Neighbours;
 pub use normals::estimate_normals;
-pub use offsets::clear_offsets;
+pub use offsets::{clear_offsets, clear_offsets_with_tree};
 pub use orientation::{Orientation, orient_normals};
 pub use outliers::statistical_outliers;
+pub use tree::PointTree;

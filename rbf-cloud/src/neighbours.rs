@@ -1,10 +1,9 @@
-//! Each point's k nearest other points, found once through one k-d tree (kiddo's
-//! `ImmutableKdTree`) on every core.
+//! Each point's k nearest other points, found once through one k-d tree ([`PointTree`]) on
+//! every core.
 
-use std::num::NonZero;
-
-use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
+
+use crate::PointTree;
 
 /// The k nearest other points of every point, nearest first.
 #[derive(Clone, Debug)]
@@ -28,25 +27,34 @@ impl Neighbours {
     /// assert_eq!(near.distances_of(2), &[2.0]);
     /// ```
     pub fn new(points: &[[f64; 3]], k: usize) -> Self {
+        Self::with_tree(&PointTree::new(points), points, k)
+    }
+
+    /// [`Neighbours::new`] through a tree already built over `points`.
+    ///
+    /// ```
+    /// use rbf_cloud::{Neighbours, PointTree};
+    /// let points = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [3.0, 0.0, 0.0]];
+    /// let tree = PointTree::new(&points);
+    /// assert_eq!(Neighbours::with_tree(&tree, &points, 2).of(0), &[1, 2]);
+    /// ```
+    pub fn with_tree(tree: &PointTree, points: &[[f64; 3]], k: usize) -> Self {
         let k = k.min(points.len().saturating_sub(1));
-        let Some(wanted) = NonZero::new(k + 1) else {
+        if k == 0 {
             return Self {
                 k: 0,
                 indices: Vec::new(),
                 distances: Vec::new(),
             };
-        };
-        let tree: ImmutableKdTree<f64, 3> = ImmutableKdTree::new_from_slice(points);
+        }
         let rows: Vec<(Vec<u32>, Vec<f64>)> = points
             .par_iter()
             .enumerate()
             .map(|(i, p)| {
-                let found = tree.nearest_n::<SquaredEuclidean>(p, wanted);
                 // The point itself is among them (at distance 0, maybe behind a duplicate).
-                let mut row: Vec<(u32, f64)> = found
-                    .into_iter()
-                    .filter(|n| n.item as usize != i)
-                    .map(|n| (n.item as u32, n.distance.sqrt()))
+                let mut row: Vec<(u32, f64)> = (tree.k_nearest(p, k + 1).into_iter())
+                    .filter(|n| n.0 != i)
+                    .map(|(j, d)| (j as u32, d))
                     .collect();
                 row.truncate(k);
                 row.into_iter().unzip()

@@ -1,7 +1,8 @@
 //! How far off a scanned surface each point may place its inside and outside constraints.
 
-use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
+
+use crate::PointTree;
 
 /// Halvings of the wanted distance tried before a side is given up.
 const HALVINGS: u32 = 5;
@@ -32,10 +33,28 @@ const HALVINGS: u32 = 5;
 /// assert!(offsets[0][0] > 0.0 && offsets[0][0] <= 0.1);
 /// ```
 pub fn clear_offsets(points: &[[f64; 3]], normals: &[[f64; 3]], wanted: f64) -> Vec<[f64; 2]> {
+    clear_offsets_with_tree(&PointTree::new(points), points, normals, wanted)
+}
+
+/// [`clear_offsets`] through a tree already built over `points`.
+///
+/// ```
+/// use rbf_cloud::{PointTree, clear_offsets_with_tree};
+/// let points = [[0.0, 0.0, 0.1], [0.0, 0.0, -0.1]];
+/// let normals = [[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+/// let offsets = clear_offsets_with_tree(&PointTree::new(&points), &points, &normals, 0.4);
+/// assert_eq!(offsets[0][1], 0.4);
+/// assert!(offsets[0][0] <= 0.1);
+/// ```
+pub fn clear_offsets_with_tree(
+    tree: &PointTree,
+    points: &[[f64; 3]],
+    normals: &[[f64; 3]],
+    wanted: f64,
+) -> Vec<[f64; 2]> {
     if points.is_empty() || normals.len() != points.len() || !(wanted > 0.0) {
         return vec![[0.0; 2]; normals.len().min(points.len())];
     }
-    let tree: ImmutableKdTree<f64, 3> = ImmutableKdTree::new_from_slice(points);
     points
         .par_iter()
         .zip(normals)
@@ -45,8 +64,7 @@ pub fn clear_offsets(points: &[[f64; 3]], normals: &[[f64; 3]], wanted: f64) -> 
                 let mut d = wanted;
                 for _ in 0..=HALVINGS {
                     let q: [f64; 3] = core::array::from_fn(|k| p[k] + sign * d * n[k]);
-                    let nearest = tree.nearest_one::<SquaredEuclidean>(&q);
-                    let j = nearest.item as usize;
+                    let j = tree.nearest(&q).map_or(i, |n| n.0);
                     let agrees = j == i
                         || (distance(&points[j], p) <= d
                             && dot(&normals[j], n) > 0.5 * norm(&normals[j]) * norm(n));
