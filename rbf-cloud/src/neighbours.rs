@@ -30,7 +30,8 @@ impl Neighbours {
         Self::with_tree(&PointTree::new(points), points, k)
     }
 
-    /// [`Neighbours::new`] through a tree already built over `points`.
+    /// [`Neighbours::new`] through a tree already built over `points` (the same points, in
+    /// order).
     ///
     /// ```
     /// use rbf_cloud::{Neighbours, PointTree};
@@ -63,7 +64,8 @@ impl Neighbours {
         let mut indices = Vec::with_capacity(points.len() * k);
         let mut distances = Vec::with_capacity(points.len() * k);
         for (i, d) in rows {
-            // A row short of k (the point itself was not returned among equals) is padded with
+            // A row short of k (the point itself was not returned among equals, or points that
+            // are not finite were not found) is padded with
             // its last neighbour, so that every row has k entries.
             let last = (*i.last().unwrap_or(&0), *d.last().unwrap_or(&0.0));
             indices.extend(i.iter().copied().chain(std::iter::repeat(last.0)).take(k));

@@ -36,7 +36,7 @@ pub fn clear_offsets(points: &[[f64; 3]], normals: &[[f64; 3]], wanted: f64) -> 
     clear_offsets_with_tree(&PointTree::new(points), points, normals, wanted)
 }
 
-/// [`clear_offsets`] through a tree already built over `points`.
+/// [`clear_offsets`] through a tree already built over `points` (the same points, in order).
 ///
 /// ```
 /// use rbf_cloud::{PointTree, clear_offsets_with_tree};
@@ -66,7 +66,8 @@ pub fn clear_offsets_with_tree(
                     let q: [f64; 3] = core::array::from_fn(|k| p[k] + sign * d * n[k]);
                     let j = tree.nearest(&q).map_or(i, |n| n.0);
                     let agrees = j == i
-                        || (distance(&points[j], p) <= d
+                        || (j < points.len()
+                            && distance(&points[j], p) <= d
                             && dot(&normals[j], n) > 0.5 * norm(&normals[j]) * norm(n));
                     if agrees {
                         return d;

@@ -18,6 +18,7 @@ use rayon::prelude::*;
 /// near.sort();
 /// assert_eq!(near, vec![0, 1]);
 /// ```
+#[derive(Debug)]
 pub struct PointTree<const D: usize = 3> {
     tree: ImmutableKdTree<f64, D>,
     len: usize,
@@ -42,17 +43,18 @@ impl<const D: usize> PointTree<D> {
         self.len == 0
     }
 
-    /// The nearest point to `q` and its distance; `None` for an empty tree.
+    /// The nearest point to `q` and its distance; `None` for an empty tree or a query that is
+    /// not finite. Points that are not finite are never found.
     pub fn nearest(&self, q: &[f64; D]) -> Option<(usize, f64)> {
-        if self.is_empty() {
+        if self.is_empty() || !q.iter().all(|x| x.is_finite()) {
             return None;
         }
         let n = self.tree.nearest_one::<SquaredEuclidean>(q);
-        Some((n.item as usize, n.distance.sqrt()))
+        (n.distance < f64::MAX).then(|| (n.item as usize, n.distance.sqrt()))
     }
 
-    /// The `k` nearest points to `q` (all of them if there are fewer), nearest first, with their
-    /// distances.
+    /// The `k` nearest points to `q` (all of them if there are fewer; fewer still when some are
+    /// not finite), nearest first, with their distances.
     pub fn k_nearest(&self, q: &[f64; D], k: usize) -> Vec<(usize, f64)> {
         let Some(wanted) = NonZero::new(k.min(self.len)) else {
             return Vec::new();
@@ -79,8 +81,8 @@ impl<const D: usize> PointTree<D> {
         .collect()
     }
 
-    /// The distance from each of `queries` to its nearest point (infinite for an empty tree),
-    /// on every core.
+    /// The distance from each of `queries` to its nearest point (infinite for an empty tree or
+    /// a query that is not finite), on every core.
     pub fn distances(&self, queries: &[[f64; D]]) -> Vec<f64> {
         queries
             .par_iter()
@@ -145,5 +147,17 @@ mod tests {
         assert!(tree.k_nearest(&[0.0; 3], 3).is_empty());
         assert!(tree.within(&[0.0; 3], 1.0).is_empty());
         assert_eq!(tree.distances(&[[0.0; 3]]), vec![f64::INFINITY]);
+    }
+
+    #[test]
+    fn what_is_not_finite_is_never_found() {
+        let tree = PointTree::new(&[[f64::NAN, 0.0, 0.0], [1.0, 0.0, 0.0]]);
+        assert_eq!(tree.nearest(&[f64::NAN, 0.0, 0.0]), None);
+        assert_eq!(tree.nearest(&[0.0, 0.0, 0.0]), Some((1, 1.0)));
+        assert_eq!(tree.k_nearest(&[0.0; 3], 2), vec![(1, 1.0)]);
+        assert_eq!(
+            tree.distances(&[[f64::INFINITY, 0.0, 0.0]]),
+            vec![f64::INFINITY]
+        );
     }
 }

@@ -225,9 +225,12 @@ impl Goal {
             .filter_map(|&u| {
                 // Where the ray leaves the volume.
                 let exit = (0..3)
-                    .filter(|&d| u[d] != 0.0)
+                    .filter(|&d| u[d] != 0.0 && extent[d] > 0.0)
                     .map(|d| 0.5 * extent[d] / u[d].abs())
                     .fold(half_diagonal, f64::min);
+                if !(exit > 0.0) {
+                    return None;
+                }
                 FAR_RADII.iter().find_map(|&r| {
                     let at = self.point(core::array::from_fn(|d| centre[d] + r * exit * u[d]));
                     (f.value(&flat(at)) > 0.0).then_some((r * exit, u))
@@ -373,7 +376,8 @@ impl Goal {
             .zip(to_current)
             .map(|(&v, d)| (v, d, true))
             .collect();
-        // A current boundary voxel is at most its distance to the mesh's surface, plus a voxel,
+        // A current boundary voxel is at most its distance to the goal's surface (the signed
+        // distance from the densities), plus a voxel,
         // from the goal's boundary voxels, wherever the goal has them. Where a part thinner than
         // a voxel passes between voxel centres the goal has none, and the distance to the
         // nearest would count a surface hugging that part as several voxels off.
@@ -462,7 +466,8 @@ impl Goal {
 /// volume's centre to where the ray leaves it.
 const FAR_RADII: [f64; 7] = [1.1, 1.5, 3.0, 6.0, 12.0, 30.0, 100.0];
 
-/// The most far-field constraints one iteration adds.
+/// The most far-field constraints one call of [`Goal::far_field_fixes`] (one round of settling)
+/// adds.
 const FAR_FIXES: usize = 8;
 
 /// `n` unit vectors spread evenly over the sphere (a Fibonacci lattice).
@@ -614,11 +619,11 @@ mod tests {
     }
 
     #[test]
-    fn a_far_field_positive_every_way_gets_the_most_fixes_one_iteration_adds() {
+    fn a_far_field_positive_every_way_gets_the_most_fixes_one_round_adds() {
         // f = |x|³ − 8: positive everywhere beyond radius 2.
         let f = InterpolantView::new(Kernel::Cubic, &[[0.0; 3]], &[1.0], -8.0, [0.0; 3]).unwrap();
         let fixes = ball().far_field_fixes(&f);
-        // As many as one iteration may add, each where f is positive, outside the volume.
+        // As many as one round may add, each where f is positive, outside the volume.
         assert_eq!(fixes.len(), FAR_FIXES);
         for c in &fixes {
             assert!(f.value(&c.position) > 0.0, "{c:?}");

@@ -166,8 +166,9 @@ pub fn convert_iterative(
                 constraints.extend(new);
                 fit = rbf_solve::fit(&constraints, &model.settings)?;
             }
-            // A polish that leaves f positive far outside is given up.
-            if violated > 0 || !goal.far_field_fixes(&fit.interpolant.view()).is_empty() {
+            // A polish that turns f positive far outside is given up.
+            let far = |f: &Interpolant<f64, 3>| !goal.far_field_fixes(&f.view()).is_empty();
+            if violated > 0 || (far(&fit.interpolant) && !far(&model.interpolant)) {
                 break;
             }
             let polished = Model {
@@ -364,18 +365,21 @@ fn refine_to_goal<const D: usize>(
         }
     }
     let (_, model) = best.ok_or(ConvertError::NoIteration)?;
-    Ok((settle_far_field(goal, model, settings)?, report))
+    Ok((settle_far_field(goal, model, settings, check), report))
 }
 
 /// The kept model with f made negative where it was positive far outside the volume
 /// ([`Goal::far_field_fixes`]), a few rounds of exterior constraints there and a refit. Only
 /// the kept model is checked: an early model's far field says nothing of the last one's, and
-/// constraints added for it would only steer the loop.
+/// constraints added for it would only steer the loop. A round whose refit fails or violates
+/// more probes (`check`) than the model before it is not taken.
 fn settle_far_field<const D: usize>(
     goal: &Goal,
     mut model: Model<D>,
     settings: &IterativeSettings,
-) -> Result<Model<D>, ConvertError> {
+    check: impl Fn(&Interpolant<f64, D>, &[Constraint<D>]) -> (usize, Vec<Constraint<D>>),
+) -> Model<D> {
+    let mut violated = check(&model.interpolant, &model.constraints).0;
     for _ in 0..FAR_ROUNDS {
         let fixes = goal.far_field_fixes(&model.interpolant.view());
         let room = settings
@@ -384,12 +388,24 @@ fn settle_far_field<const D: usize>(
         if fixes.is_empty() || room == 0 {
             break;
         }
-        model.constraints.extend(fixes.into_iter().take(room));
-        let fit = rbf_solve::fit(&model.constraints, &model.settings)?;
-        model.interpolant = fit.interpolant;
-        model.report = Some(fit.report);
+        let mut constraints = model.constraints.clone();
+        constraints.extend(fixes.into_iter().take(room));
+        let Ok(fit) = rbf_solve::fit(&constraints, &model.settings) else {
+            break;
+        };
+        let now = check(&fit.interpolant, &constraints).0;
+        if now > violated {
+            break;
+        }
+        violated = now;
+        model = Model {
+            constraints,
+            interpolant: fit.interpolant,
+            report: Some(fit.report),
+            ..model
+        };
     }
-    Ok(model)
+    model
 }
 
 /// How the loop ranks its models, best first: those close to the mesh (a maximum error within
