@@ -209,7 +209,9 @@ pub fn reconstruct(
         kept = subset.iter().map(|&j| kept[j]).collect();
     }
     let k = settings.neighbours.max(3);
-    let near = Neighbours::new(&kept, k);
+    // One tree over the kept points serves their neighbourhoods of every size.
+    let kept_tree = PointTree::new(&kept);
+    let near = Neighbours::with_tree(&kept_tree, &kept, k);
     let (unoriented, estimated) = match normals {
         Some(given) if given.len() == points.len() => {
             (keep.iter().map(|&i| unit(given[i])).collect(), false)
@@ -217,7 +219,7 @@ pub fn reconstruct(
         _ => (estimate_normals(&kept, &near), true),
     };
     let longest = longest_side(&kept);
-    let (noise, wide) = measure_noise(&kept, &unoriented, &near, estimated);
+    let (noise, wide) = measure_noise(&kept, &kept_tree, &unoriented, &near, estimated);
     let noise = noise / longest;
     let tolerance = settings
         .tolerance
@@ -634,8 +636,10 @@ fn flatness(points: &[[f64; 3]]) -> Option<&'static str> {
 /// neighbourhoods grown until they reach four times the noise they measure (up to 128
 /// neighbours); with the grown neighbourhoods and the normals estimated on them, when they grew.
 /// A neighbourhood not much wider than the noise fits the noise itself and measures too little.
+/// `tree` is built over `points`.
 fn measure_noise(
     points: &[[f64; 3]],
+    tree: &PointTree,
     normals: &[[f64; 3]],
     near: &Neighbours,
     estimated: bool,
@@ -658,7 +662,7 @@ fn measure_noise(
             break;
         }
         let grown_k = (grown.ceil() as usize).min(MOST_NEIGHBOURS);
-        let neighbours = Neighbours::new(points, grown_k);
+        let neighbours = Neighbours::with_tree(tree, points, grown_k);
         let grown_normals = if estimated {
             estimate_normals(points, &neighbours)
         } else {
