@@ -201,11 +201,11 @@ impl Goal {
     /// never see: the cubic kernel's f grows like r times a function of the direction far from
     /// its centres, and a long, thin shape whose constraints lie mostly inside it can leave that
     /// positive along its length, a second sheet a few lengths off. Rays from the volume's
-    /// centre (128 directions, 32 in 2D) are sampled from just outside it to a hundred times as far
-    /// as where they leave it; on each
-    /// ray where f > 0, at the nearest such sample, f is asked to be minus the distance to the
-    /// goal boundary. At most [`FAR_FIXES`] rays, at least 25° apart, the nearest first; none
-    /// when the far field is negative everywhere, as it is for most shapes.
+    /// centre (128 directions, 32 in 2D) are sampled from just outside it to a hundred times as
+    /// far as where they leave it; on each ray where f > 0, at the nearest such sample, f is
+    /// asked to be minus the distance to the goal boundary. At most [`FAR_FIXES`] rays, at least
+    /// 25° apart, the nearest first; none when the far field is negative everywhere, as it is
+    /// for most shapes.
     pub(crate) fn far_field_fixes<const D: usize>(
         &self,
         f: &rbf_core::InterpolantView<'_, f64, D>,
@@ -217,7 +217,7 @@ impl Goal {
         let directions = if flat_goal {
             circle_directions(32)
         } else {
-            sphere_directions(128)
+            rbf_core::shapes::fibonacci_sphere(128)
         };
         // (radius, direction) of the nearest positive sample on each ray.
         let mut positive: Vec<(f64, [f64; 3])> = directions
@@ -377,10 +377,10 @@ impl Goal {
             .map(|(&v, d)| (v, d, true))
             .collect();
         // A current boundary voxel is at most its distance to the goal's surface (the signed
-        // distance from the densities), plus a voxel,
-        // from the goal's boundary voxels, wherever the goal has them. Where a part thinner than
-        // a voxel passes between voxel centres the goal has none, and the distance to the
-        // nearest would count a surface hugging that part as several voxels off.
+        // distance from the densities) plus a voxel from the goal's boundary voxels, wherever
+        // the goal has them. Where a part thinner than a voxel passes between voxel centres the
+        // goal has none, and the distance to the nearest would count a surface hugging that part
+        // as several voxels off.
         errors.extend(
             current
                 .iter()
@@ -469,19 +469,6 @@ const FAR_RADII: [f64; 7] = [1.1, 1.5, 3.0, 6.0, 12.0, 30.0, 100.0];
 /// The most far-field constraints one call of [`Goal::far_field_fixes`] (one round of settling)
 /// adds.
 const FAR_FIXES: usize = 8;
-
-/// `n` unit vectors spread evenly over the sphere (a Fibonacci lattice).
-fn sphere_directions(n: usize) -> Vec<[f64; 3]> {
-    let turn = core::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - (2 * i + 1) as f64 / n as f64;
-            let ring = (1.0 - z * z).sqrt();
-            let a = turn * i as f64;
-            [ring * a.cos(), ring * a.sin(), z]
-        })
-        .collect()
-}
 
 /// `n` unit vectors spread evenly over the circle in the xy-plane.
 fn circle_directions(n: usize) -> Vec<[f64; 3]> {
