@@ -246,3 +246,57 @@ fn a_smoothing_fit_passes_through_the_middle_of_the_noise() {
         "smoothing fit {smooth} (worst {smooth_worst}), greedy fit {fitted} (worst {fitted_worst}) off the torus"
     );
 }
+
+/// A strip whose faces are three point spacings apart, thinner than the normal constraints'
+/// default offset (1 % of its longest side, 3.2): each inside point goes only as deep as it
+/// stays nearest its own face, so it does not land outside the other one, and the strip comes
+/// out solid between its two faces.
+#[test]
+fn a_strip_thinner_than_the_offset_stays_solid_between_its_faces() {
+    let (length, width, half) = (160i32, 8i32, 1.5);
+    let mut points = Vec::new();
+    let mut normals = Vec::new();
+    for i in -length..=length {
+        for j in -width..=width {
+            let (x, y) = (i as f64, j as f64);
+            for side in [1.0, -1.0] {
+                points.push([x, y, side * half]);
+                normals.push([0.0, 0.0, side]);
+            }
+            let rim = [
+                if i.abs() == length {
+                    i.signum() as f64
+                } else {
+                    0.0
+                },
+                if j.abs() == width {
+                    j.signum() as f64
+                } else {
+                    0.0
+                },
+                0.0,
+            ];
+            if rim != [0.0; 3] {
+                for z in [-0.75, 0.0, 0.75] {
+                    points.push([x, y, z]);
+                    normals.push(rim);
+                }
+            }
+        }
+    }
+    let (model, _) = reconstruct(&points, Some(&normals), &ReconstructSettings::default()).unwrap();
+    let f = model.interpolant.view();
+    for k in 0..=10 {
+        let (x, y) = (-140.0 + 28.0 * k as f64, 5.0 - k as f64);
+        assert!(
+            f.value(&[x, y, 0.0]) > 0.0,
+            "inside the strip at ({x}, {y})"
+        );
+        for z in [2.5, -2.5] {
+            assert!(
+                f.value(&[x, y, z]) < 0.0,
+                "outside the strip at ({x}, {y}, {z})"
+            );
+        }
+    }
+}

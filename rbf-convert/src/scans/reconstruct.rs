@@ -56,7 +56,10 @@ pub struct ReconstructSettings {
     /// The most points that carry constraints: 5000.
     pub max_centres: usize,
     /// Offset of the normal constraints: 1% of the box's longest side, and at least four
-    /// times the measured noise.
+    /// times the measured noise; each constraint's own is shortened (halved up to five times)
+    /// until its inside point stays nearest its own point, so that a part thinner than the
+    /// offset is not pierced (on a clean simulated cow scan, whose walls are thinner than
+    /// 1 %: genus 17 → 11, F-score at 0.5 % 0.988 → 0.995).
     pub offset: NormalOffset,
     /// The most points a scan is worked on: 10⁵. A denser one is taken as a random subset of
     /// this many (after its outliers are dropped), which has its noise and the density of a
@@ -339,10 +342,19 @@ pub fn reconstruct(
             }
         }
     }
+    // Each inside point as far in as it stays nearest its own point (Carr et al.'s check),
+    // so that it does not cross the other sheet of a part thinner than the offset.
+    let inward = clear_offsets_with_tree(&spread_tree, &spread_points, &spread_normals, distance);
     let constraints: Vec<Constraint<3>> = spread_points
         .iter()
         .zip(&spread_normals)
-        .map(|(&p, &n)| Constraint::normal(p, n))
+        .zip(&inward)
+        .map(|((&p, &n), &[inside, _])| {
+            let inside = inside.max(distance / 32.0);
+            Constraint::normal(p, n)
+                .with_offset(inside)
+                .with_value(inside / distance)
+        })
         .collect();
     // The votes above fit without smoothing (they ask which side each point is on); the
     // surface itself fits with it.
