@@ -1,6 +1,6 @@
 //! Evenly spread subsets of points: Poisson-disk sampling by greedy elimination on a grid.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// Indices of at most about `target` of `points`, no two closer than a radius chosen (by
 /// bisection) so that the count is as close to `target` as it gets from below. Points are
@@ -58,7 +58,7 @@ pub(crate) fn bounds(points: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
 /// Keeps each point (in `order`) with no kept point within `r`.
 fn greedy(points: &[[f64; 3]], order: &[usize], r: f64) -> Vec<usize> {
     let cell = |p: &[f64; 3]| -> [i64; 3] { core::array::from_fn(|d| (p[d] / r).floor() as i64) };
-    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    let mut grid: FxHashMap<[i64; 3], Vec<usize>> = FxHashMap::default();
     let mut kept = Vec::new();
     for &i in order {
         let p = points[i];

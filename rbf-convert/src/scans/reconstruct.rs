@@ -109,7 +109,8 @@ pub struct ReconstructReport {
     pub working: usize,
     /// Whether the normals were estimated (the cloud had none).
     pub normals_estimated: bool,
-    /// Normals (given or estimated) whose sign the orientation reversed.
+    /// Normals (given or estimated) whose sign the orientation reversed (the propagation, and
+    /// at the end a lone normal of the spread against neighbours that agree).
     pub flipped: usize,
     /// Normals of a noisy scan reversed because fits to the other points said they point
     /// inward (after the orientation; see [`reconstruct`]).
@@ -308,7 +309,8 @@ pub fn reconstruct(
     // A noisy scan's orientation goes wrong in patches (where it is thin, where noise hides
     // its edges). The winding number of the rest of the scan turns them back first, whole
     // patches and then single points (a coarse fit through a patch follows it); then fits to
-    // its points vote on every point's sign, until few change.
+    // its points vote on every point's sign, until few change; then patches again, cut anew
+    // where those flips left edges, for a few rounds.
     // One tree over the spread serves its neighbours, offsets and distances.
     let spread_tree = PointTree::new(&spread_points);
     let spread_near = Neighbours::with_tree(&spread_tree, &spread_points, 8);
@@ -317,8 +319,32 @@ pub fn reconstruct(
     reversed_by_winding +=
         super::patches::flip_patches(&spread_points, &mut spread_normals, &spread_near, longest);
     if noise > SMOOTH_ABOVE {
-        for _ in 0..WINDING_PASSES {
-            let now = super::dipoles::flip_against_winding(
+        for _ in 0..SIGN_ROUNDS {
+            for _ in 0..WINDING_PASSES {
+                let now = super::dipoles::flip_against_winding(
+                    &spread_points,
+                    &mut spread_normals,
+                    &spread_near,
+                    longest,
+                );
+                reversed_by_winding += now;
+                if now == 0 {
+                    break;
+                }
+            }
+            for _ in 0..CONSENSUS_PASSES {
+                let now = super::consensus::flip_against_fits(
+                    &spread_points,
+                    &mut spread_normals,
+                    &fit_settings,
+                    2.0 * distance,
+                )?;
+                refuted += now;
+                if now * 1000 < spread_points.len() {
+                    break;
+                }
+            }
+            let now = super::patches::flip_patches(
                 &spread_points,
                 &mut spread_normals,
                 &spread_near,
@@ -329,18 +355,14 @@ pub fn reconstruct(
                 break;
             }
         }
-        for _ in 0..CONSENSUS_PASSES {
-            let now = super::consensus::flip_against_fits(
-                &spread_points,
-                &mut spread_normals,
-                &fit_settings,
-                2.0 * distance,
-            )?;
-            refuted += now;
-            if now * 1000 < spread_points.len() {
-                break;
-            }
-        }
+    }
+    // A lone normal against neighbours that agree with each other (which the checks above
+    // pass over where its probes are not clear) is turned to them.
+    let lone: Vec<usize> = (0..spread_points.len())
+        .filter(|&i| opposes_neighbours(&spread_normals, &spread_near, i))
+        .collect();
+    for &i in &lone {
+        spread_normals[i] = spread_normals[i].map(|c| -c);
     }
     // Each inside point as far in as it stays nearest its own point (Carr et al.'s check),
     // so that it does not cross the other sheet of a part thinner than the offset.
@@ -466,7 +488,7 @@ pub fn reconstruct(
         outliers,
         working: kept.len(),
         normals_estimated: estimated,
-        flipped: oriented.flipped,
+        flipped: oriented.flipped + lone.len(),
         refuted,
         reversed_by_winding,
         disagreeing,
@@ -583,6 +605,13 @@ fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
 /// takes the few that the first's flips made clear (on a torus at 0.5 % noise, 253 then 1).
 const WINDING_PASSES: usize = 2;
 
+/// Rounds of the noisy scan's sign checks (winding number point by point, votes, patches), at
+/// most; they stop when the patches turn nothing. Each round's flips redraw the patches'
+/// edges, so the next finds more of a wrong region whole: on a simulated cow scan at 0.5 %
+/// noise, rounds turned 124, 80 and 49 more normals by patches, and its F-score at 0.5 % went
+/// from 0.883 (one round) to 0.916 (two) and 0.924 (three; four: 0.925).
+const SIGN_ROUNDS: usize = 3;
+
 /// Passes of [`super::consensus::flip_against_fits`] over a noisy scan, at most; they stop
 /// once fewer than one normal in a thousand changes.
 const CONSENSUS_PASSES: usize = 3;
@@ -695,6 +724,23 @@ const MOST_NEIGHBOURS: usize = 128;
 /// Whether the normal of point `i` is within 60° of the mean of its neighbours' normals: a
 /// normal that is not (noise near a crease, an isolated flip) says more about the noise than
 /// about the surface, and its neighbours say the rest.
+/// Whether the normal of point `i` is more than 120° from the mean of its neighbours' unit
+/// normals, and that mean is at least half a unit long (they agree with each other: not two
+/// sheets of a thin part).
+fn opposes_neighbours(normals: &[[f64; 3]], near: &Neighbours, i: usize) -> bool {
+    let others = near.of(i);
+    if others.is_empty() {
+        return false;
+    }
+    let mut mean = [0.0; 3];
+    for &j in others {
+        let n = unit(normals[j as usize]);
+        (0..3).for_each(|d| mean[d] += n[d] / others.len() as f64);
+    }
+    let length = dot(mean, mean).sqrt();
+    length > 0.5 && dot(unit(normals[i]), mean) < -0.5 * length
+}
+
 fn agrees_with_neighbours(normals: &[[f64; 3]], near: &Neighbours, i: usize) -> bool {
     let mut mean = [0.0; 3];
     for &j in near.of(i) {
@@ -821,5 +867,44 @@ pub fn mesh_resolution(points: &[[f64; 3]]) -> usize {
         (cells as usize).clamp(96, 384)
     } else {
         128
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::opposes_neighbours;
+    use rbf_cloud::Neighbours;
+
+    /// A sheet of points facing +z, one of them reversed; and two sheets of a thin part, two
+    /// point spacings apart, facing away from each other.
+    #[test]
+    fn a_lone_reversed_normal_opposes_its_neighbours_but_a_thin_part_does_not() {
+        let mut points = Vec::new();
+        let mut normals = Vec::new();
+        for i in 0..10 {
+            for j in 0..10 {
+                points.push([i as f64, j as f64, 0.0]);
+                normals.push([0.0, 0.0, if (i, j) == (4, 5) { -1.0 } else { 1.0 }]);
+            }
+        }
+        let near = Neighbours::new(&points, 8);
+        let lone: Vec<usize> = (0..points.len())
+            .filter(|&i| opposes_neighbours(&normals, &near, i))
+            .collect();
+        assert_eq!(lone, vec![45]);
+
+        // Each point's eight nearest: four on its own sheet, and the other sheet's nearest.
+        let mut points = Vec::new();
+        let mut normals = Vec::new();
+        for i in 0..10 {
+            for j in 0..10 {
+                for side in [1.0, -1.0] {
+                    points.push([i as f64 * 2.0, j as f64 * 2.0, side * 0.9]);
+                    normals.push([0.0, 0.0, side]);
+                }
+            }
+        }
+        let near = Neighbours::new(&points, 8);
+        assert!((0..points.len()).all(|i| !opposes_neighbours(&normals, &near, i)));
     }
 }
