@@ -721,9 +721,6 @@ type Grown = (Neighbours, Vec<[f64; 3]>);
 /// The widest neighbourhood noise is measured and smoothed on.
 const MOST_NEIGHBOURS: usize = 128;
 
-/// Whether the normal of point `i` is within 60° of the mean of its neighbours' normals: a
-/// normal that is not (noise near a crease, an isolated flip) says more about the noise than
-/// about the surface, and its neighbours say the rest.
 /// Whether the normal of point `i` is more than 120° from the mean of its neighbours' unit
 /// normals, and that mean is at least half a unit long (they agree with each other: not two
 /// sheets of a thin part).
@@ -741,6 +738,9 @@ fn opposes_neighbours(normals: &[[f64; 3]], near: &Neighbours, i: usize) -> bool
     length > 0.5 && dot(unit(normals[i]), mean) < -0.5 * length
 }
 
+/// Whether the normal of point `i` is within 60° of the mean of its neighbours' normals: a
+/// normal that is not (noise near a crease, an isolated flip) says more about the noise than
+/// about the surface, and its neighbours say the rest.
 fn agrees_with_neighbours(normals: &[[f64; 3]], near: &Neighbours, i: usize) -> bool {
     let mut mean = [0.0; 3];
     for &j in near.of(i) {
