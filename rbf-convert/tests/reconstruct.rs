@@ -139,6 +139,15 @@ fn flat_and_tiny_clouds_are_refused_with_what_they_are() {
         reconstruct(&line, None, &settings),
         Err(ConvertError::Flat { shape: "line" })
     ));
+    // Along a diagonal, where the points' coordinates round: still a line, not a plane.
+    let diagonal: Vec<[f64; 3]> = (0..100)
+        .map(|i| [i as f64 / 7.0, 2.0 * i as f64 / 7.0, 3.0 * i as f64 / 7.0])
+        .collect();
+    let refused = reconstruct(&diagonal, None, &settings);
+    assert!(
+        matches!(refused, Err(ConvertError::Flat { shape: "line" })),
+        "{refused:?}"
+    );
     assert!(matches!(
         reconstruct(&[[0.0; 3]; 5], None, &settings),
         Err(ConvertError::TooFewPoints { points: 5, .. })

@@ -661,7 +661,9 @@ fn flatness(points: &[[f64; 3]]) -> Option<&'static str> {
         .collect();
     e.sort_by(f64::total_cmp);
     let widest = e[2];
-    let flat = |v: f64| v <= 1e-18 * widest;
+    // Thinner than a millionth of the widest extent: the eigenvalues' own rounding is about
+    // 1e-16 of the widest, so a line's second one is not exactly zero.
+    let flat = |v: f64| v <= 1e-12 * widest;
     if !(widest > 0.0) {
         Some("point")
     } else if flat(e[1]) {
