@@ -109,15 +109,17 @@ pub struct ReconstructReport {
     pub working: usize,
     /// Whether the normals were estimated (the cloud had none).
     pub normals_estimated: bool,
-    /// Normals (given or estimated) whose sign the orientation reversed (the propagation, and
-    /// at the end a lone normal of the spread against neighbours that agree).
+    /// Sign reversals by the orientation: the propagation over the points worked on, and on a
+    /// noisy scan at the end a lone normal of the spread against neighbours that agree.
     pub flipped: usize,
-    /// Normals of a noisy scan reversed because fits to the other points said they point
-    /// inward (after the orientation; see [`reconstruct`]).
+    /// Sign reversals of a noisy scan's spread because fits to the other points said a normal
+    /// points inward (after the orientation; see [`reconstruct`]). Counted at each pass: a
+    /// normal reversed twice over the rounds counts twice.
     pub refuted: usize,
-    /// Normals of a noisy scan reversed because the winding number of the other points says
-    /// they point inward (at probes along each normal, whole patches of them and then point
-    /// by point, before the fits vote).
+    /// Sign reversals of the spread because the winding number of the other points says a
+    /// normal points inward (at probes along each normal, whole patches of them and, on a
+    /// noisy scan, single points; the patches again after each round of votes). Counted at
+    /// each pass, like [`Self::refuted`].
     pub reversed_by_winding: usize,
     /// Points left out of the constraints because their normal is more than 60° from the
     /// mean of their neighbours'.
@@ -356,10 +358,12 @@ pub fn reconstruct(
             }
         }
     }
-    // A lone normal against neighbours that agree with each other (which the checks above
-    // pass over where its probes are not clear) is turned to them.
+    // On a noisy scan, a lone normal against neighbours that agree with each other (which the
+    // checks above pass over where its probes are not clear) is turned to them. Not on a clean
+    // one: where its spread straddles two close walls, a point may find seven of its eight
+    // neighbours on the other wall (the clean cow: Hausdorff 1.55 → 1.85 % with it).
     let lone: Vec<usize> = (0..spread_points.len())
-        .filter(|&i| opposes_neighbours(&spread_normals, &spread_near, i))
+        .filter(|&i| noise > SMOOTH_ABOVE && opposes_neighbours(&spread_normals, &spread_near, i))
         .collect();
     for &i in &lone {
         spread_normals[i] = spread_normals[i].map(|c| -c);
@@ -895,7 +899,8 @@ mod tests {
             .collect();
         assert_eq!(lone, vec![45]);
 
-        // Each point's eight nearest: four on its own sheet, and the other sheet's nearest.
+        // Each point's eight nearest: the other sheet's point across (1.8 away), four on its own
+        // sheet (2) and three of the other's diagonal ones (2.7): their mean is short.
         let mut points = Vec::new();
         let mut normals = Vec::new();
         for i in 0..10 {
