@@ -322,30 +322,30 @@ pub fn reconstruct(
         super::patches::flip_patches(&spread_points, &mut spread_normals, &spread_near, longest);
     if noise > SMOOTH_ABOVE {
         for _ in 0..SIGN_ROUNDS {
-            for _ in 0..WINDING_PASSES {
-                let now = super::dipoles::flip_against_winding(
-                    &spread_points,
-                    &mut spread_normals,
-                    &spread_near,
-                    longest,
-                );
-                reversed_by_winding += now;
-                if now == 0 {
-                    break;
-                }
-            }
-            for _ in 0..CONSENSUS_PASSES {
-                let now = super::consensus::flip_against_fits(
-                    &spread_points,
-                    &mut spread_normals,
-                    &fit_settings,
-                    2.0 * distance,
-                )?;
-                refuted += now;
-                if now * 1000 < spread_points.len() {
-                    break;
-                }
-            }
+            reversed_by_winding += repeat_passes(
+                WINDING_PASSES,
+                |now| now == 0,
+                || {
+                    Ok(super::dipoles::flip_against_winding(
+                        &spread_points,
+                        &mut spread_normals,
+                        &spread_near,
+                        longest,
+                    ))
+                },
+            )?;
+            refuted += repeat_passes(
+                CONSENSUS_PASSES,
+                |now| now * 1000 < spread_points.len(),
+                || {
+                    super::consensus::flip_against_fits(
+                        &spread_points,
+                        &mut spread_normals,
+                        &fit_settings,
+                        2.0 * distance,
+                    )
+                },
+            )?;
             let now = super::patches::flip_patches(
                 &spread_points,
                 &mut spread_normals,
@@ -726,6 +726,24 @@ type Grown = (Neighbours, Vec<[f64; 3]>);
 
 /// The widest neighbourhood noise is measured and smoothed on.
 const MOST_NEIGHBOURS: usize = 128;
+
+/// Runs `pass` (which flips normals and says how many) up to `passes` times, stopping after
+/// the first whose count is `enough`; returns the flips of all of them.
+fn repeat_passes(
+    passes: usize,
+    enough: impl Fn(usize) -> bool,
+    mut pass: impl FnMut() -> Result<usize, ConvertError>,
+) -> Result<usize, ConvertError> {
+    let mut total = 0;
+    for _ in 0..passes {
+        let now = pass()?;
+        total += now;
+        if enough(now) {
+            break;
+        }
+    }
+    Ok(total)
+}
 
 /// Whether the normal of point `i` is more than 120° from the mean of its neighbours' unit
 /// normals, and that mean is at least half a unit long (they agree with each other: not two
