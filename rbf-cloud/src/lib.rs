@@ -38,7 +38,7 @@ mod tree;
 
 pub use distance::distances_to_cloud;
 pub use neighbours::Neighbours;
-pub use normals::estimate_normals;
+pub use normals::{estimate_normals, normal_of};
 pub use offsets::{clear_offsets, clear_offsets_with_tree};
 pub use orientation::{Orientation, orient_normals};
 pub use outliers::statistical_outliers;

@@ -19,38 +19,46 @@ use crate::Neighbours;
 pub fn estimate_normals(points: &[[f64; 3]], neighbours: &Neighbours) -> Vec<[f64; 3]> {
     (0..points.len())
         .into_par_iter()
-        .map(|i| {
-            let near = neighbours.of(i);
-            let count = (near.len() + 1) as f64;
-            let members =
-                || std::iter::once(&points[i]).chain(near.iter().map(|&j| &points[j as usize]));
-            let mut centre = [0.0; 3];
-            for p in members() {
-                (0..3).for_each(|d| centre[d] += p[d] / count);
-            }
-            let mut covariance = Matrix3::<f64>::zeros();
-            for p in members() {
-                let q = [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]];
-                for r in 0..3 {
-                    for c in 0..3 {
-                        covariance[(r, c)] += q[r] * q[c];
-                    }
-                }
-            }
-            if covariance.iter().all(|v| *v == 0.0) || !covariance.iter().all(|v| v.is_finite()) {
-                return [0.0; 3];
-            }
-            let eigen = covariance.symmetric_eigen();
-            let smallest = (0..3)
-                .min_by(|&a, &b| eigen.eigenvalues[a].total_cmp(&eigen.eigenvalues[b]))
-                .unwrap_or(0);
-            let v = eigen.eigenvectors.column(smallest);
-            let length = v.norm();
-            if length > 0.0 {
-                [v[0] / length, v[1] / length, v[2] / length]
-            } else {
-                [0.0; 3]
-            }
-        })
+        .map(|i| normal_of(points, i, neighbours.of(i)))
         .collect()
+}
+
+/// The unit normal at point `i` from it and its neighbours `near` (indices into `points`),
+/// as [`estimate_normals`] finds it; [0, 0, 0] where they do not spread.
+///
+/// ```
+/// use rbf_cloud::normal_of;
+/// let points = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0], [1.0, 1.0, 1.0]];
+/// assert!(normal_of(&points, 0, &[1, 2, 3])[2].abs() > 0.999);
+/// ```
+pub fn normal_of(points: &[[f64; 3]], i: usize, near: &[u32]) -> [f64; 3] {
+    let count = (near.len() + 1) as f64;
+    let members = || std::iter::once(&points[i]).chain(near.iter().map(|&j| &points[j as usize]));
+    let mut centre = [0.0; 3];
+    for p in members() {
+        (0..3).for_each(|d| centre[d] += p[d] / count);
+    }
+    let mut covariance = Matrix3::<f64>::zeros();
+    for p in members() {
+        let q = [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]];
+        for r in 0..3 {
+            for c in 0..3 {
+                covariance[(r, c)] += q[r] * q[c];
+            }
+        }
+    }
+    if covariance.iter().all(|v| *v == 0.0) || !covariance.iter().all(|v| v.is_finite()) {
+        return [0.0; 3];
+    }
+    let eigen = covariance.symmetric_eigen();
+    let smallest = (0..3)
+        .min_by(|&a, &b| eigen.eigenvalues[a].total_cmp(&eigen.eigenvalues[b]))
+        .unwrap_or(0);
+    let v = eigen.eigenvectors.column(smallest);
+    let length = v.norm();
+    if length > 0.0 {
+        [v[0] / length, v[1] / length, v[2] / length]
+    } else {
+        [0.0; 3]
+    }
 }

@@ -3,7 +3,9 @@
 //! apart), with noise, flipped given normals, and outliers.
 
 use proptest::prelude::*;
-use rbf_cloud::{Neighbours, estimate_normals, orient_normals, statistical_outliers};
+use rbf_cloud::{
+    Neighbours, PointTree, estimate_normals, normal_of, orient_normals, statistical_outliers,
+};
 
 /// A small deterministic generator (xorshift), so that the tests need no random crate.
 struct Rng(u64);
@@ -224,6 +226,39 @@ fn degenerate_clouds_do_not_panic() {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Neighbourhoods of some points only are the rows every point's would have, and the
+    /// normal of one neighbourhood is the one estimated with all: what the noise measurement
+    /// relies on when it grows neighbourhoods on a sample.
+    #[test]
+    fn some_points_neighbourhoods_are_those_of_all(
+        seed in 1u64..1_000_000,
+        k in 1usize..40,
+        step in 1usize..9,
+    ) {
+        let mut rng = Rng(seed);
+        // Points on a grid (ties in distance) and random ones, a few of them coincident.
+        let mut points: Vec<[f64; 3]> = (0..300)
+            .map(|i| if i % 3 == 0 {
+                [(i % 7) as f64, (i / 7 % 5) as f64, 0.0]
+            } else {
+                [rng.next(), rng.next(), rng.next()]
+            })
+            .collect();
+        points[17] = points[16];
+        let tree = PointTree::new(&points);
+        let all = Neighbours::with_tree(&tree, &points, k);
+        let normals = estimate_normals(&points, &all);
+        let which: Vec<usize> = (0..points.len()).step_by(step).collect();
+        let some = Neighbours::of_some(&tree, &points, &which, k);
+        prop_assert_eq!(some.len(), which.len());
+        prop_assert_eq!(some.k(), all.k());
+        for (r, &i) in which.iter().enumerate() {
+            prop_assert_eq!(some.of(r), all.of(i));
+            prop_assert_eq!(some.distances_of(r), all.distances_of(i));
+            prop_assert_eq!(normal_of(&points, i, some.of(r)), normals[i]);
+        }
+    }
 
     /// Rotated, scaled, moved and noisy spheres come out outward (noise up to 1% of the radius).
     #[test]

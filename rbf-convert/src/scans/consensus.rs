@@ -20,37 +20,57 @@ const COARSE: usize = 1500;
 /// with its reverse (an angle above 120°).
 const DISAGREE: f64 = 0.5;
 
+/// The two coarse spreads of a point set, disjoint, and which of them judges each point: each
+/// judges the other's points, and the first judges the rest. They depend on the points alone,
+/// so they are chosen once for every round of votes.
+pub(crate) struct Juries {
+    spreads: [Vec<usize>; 2],
+    /// For each point, the spread whose fit judges it.
+    judge: Vec<usize>,
+}
+
+impl Juries {
+    /// The juries of `points`; `None` where there are too few points for two spreads of
+    /// [`COARSE`] and the rest.
+    pub(crate) fn new(points: &[[f64; 3]]) -> Option<Self> {
+        if points.len() < 4 * COARSE {
+            return None;
+        }
+        let first = crate::poisson_subset(points, COARSE);
+        let mut in_first = vec![false; points.len()];
+        first.iter().for_each(|&i| in_first[i] = true);
+        let rest: Vec<usize> = (0..points.len()).filter(|&i| !in_first[i]).collect();
+        let rest_points: Vec<[f64; 3]> = rest.iter().map(|&i| points[i]).collect();
+        let second: Vec<usize> = crate::poisson_subset(&rest_points, COARSE)
+            .into_iter()
+            .map(|k| rest[k])
+            .collect();
+        let judge: Vec<usize> = in_first.iter().map(|&f| usize::from(f)).collect();
+        Some(Self {
+            spreads: [first, second],
+            judge,
+        })
+    }
+}
+
 /// Flips the normals of `points` that a coarse fit to the others says point inward; returns how
-/// many. `near` is the distance within which the coarse surface must pass for its slope to
-/// count, in the points' units.
+/// many. `juries` are those of `points`; `near` is the distance within which the coarse surface
+/// must pass for its slope to count, in the points' units.
 pub(crate) fn flip_against_fits(
     points: &[[f64; 3]],
     normals: &mut [[f64; 3]],
+    juries: &Juries,
     settings: &FitSettings,
     near: f64,
 ) -> Result<usize, ConvertError> {
-    if points.len() < 4 * COARSE {
-        return Ok(0);
-    }
-    // Two disjoint spreads: each judges the other's points, and both judge the rest.
-    let first = crate::poisson_subset(points, COARSE);
-    let mut in_first = vec![false; points.len()];
-    first.iter().for_each(|&i| in_first[i] = true);
-    let rest: Vec<usize> = (0..points.len()).filter(|&i| !in_first[i]).collect();
-    let rest_points: Vec<[f64; 3]> = rest.iter().map(|&i| points[i]).collect();
-    let second: Vec<usize> = crate::poisson_subset(&rest_points, COARSE)
-        .into_iter()
-        .map(|k| rest[k])
-        .collect();
-    // The first spread is judged by the second fit, every other point by the first.
-    let judge: Vec<usize> = in_first.iter().map(|&f| usize::from(f)).collect();
+    let [first, second] = &juries.spreads;
     let verdicts = [
-        outward(points, normals, &first, settings)?,
-        outward(points, normals, &second, settings)?,
+        outward(points, normals, first, settings)?,
+        outward(points, normals, second, settings)?,
     ];
     let mut flipped = 0;
     for (i, n) in normals.iter_mut().enumerate() {
-        let (value, gradient) = verdicts[judge[i]][i];
+        let (value, gradient) = verdicts[juries.judge[i]][i];
         let slope = norm(gradient);
         if !(slope > 0.0) || !(value.abs() / slope <= near) {
             continue;

@@ -19,7 +19,7 @@
 //! genus 0, one piece.
 
 use rbf_cloud::{
-    Neighbours, PointTree, clear_offsets_with_tree, estimate_normals, orient_normals,
+    Neighbours, PointTree, clear_offsets_with_tree, estimate_normals, normal_of, orient_normals,
     statistical_outliers,
 };
 use rbf_core::{Constraint, FitSettings, Model, NormalOffset};
@@ -321,6 +321,7 @@ pub fn reconstruct(
     reversed_by_winding +=
         super::patches::flip_patches(&spread_points, &mut spread_normals, &spread_near, longest);
     if noise > SMOOTH_ABOVE {
+        let juries = super::consensus::Juries::new(&spread_points);
         for _ in 0..SIGN_ROUNDS {
             reversed_by_winding += repeat_passes(
                 WINDING_PASSES,
@@ -334,18 +335,21 @@ pub fn reconstruct(
                     ))
                 },
             )?;
-            refuted += repeat_passes(
-                CONSENSUS_PASSES,
-                |now| now * 1000 < spread_points.len(),
-                || {
-                    super::consensus::flip_against_fits(
-                        &spread_points,
-                        &mut spread_normals,
-                        &fit_settings,
-                        2.0 * distance,
-                    )
-                },
-            )?;
+            if let Some(juries) = &juries {
+                refuted += repeat_passes(
+                    CONSENSUS_PASSES,
+                    |now| now * 1000 < spread_points.len(),
+                    || {
+                        super::consensus::flip_against_fits(
+                            &spread_points,
+                            &mut spread_normals,
+                            juries,
+                            &fit_settings,
+                            2.0 * distance,
+                        )
+                    },
+                )?;
+            }
             let now = super::patches::flip_patches(
                 &spread_points,
                 &mut spread_normals,
@@ -691,13 +695,24 @@ fn measure_noise(
     near: &Neighbours,
     estimated: bool,
 ) -> (f64, Option<Grown>) {
-    let mut noise = median_quadric_residual(points, normals, near);
-    let mut wide: Option<Grown> = None;
+    // A median needs no more than a few thousand points: the neighbourhoods grow on a sample,
+    // and only the last size is found for every point.
+    let sample: Vec<usize> = (0..points.len())
+        .step_by((points.len() / NOISE_SAMPLE).max(1))
+        .collect();
+    let mut rows = Neighbours::of_some(tree, points, &sample, near.k());
+    let mut noise = median_quadric_residual(
+        points,
+        sample
+            .iter()
+            .enumerate()
+            .map(|(r, &i)| (i, normals[i], rows.of(r))),
+    );
+    let mut grown_to = None;
     for _ in 0..6 {
-        let current = wide.as_ref().map_or(near, |(w, _)| w);
-        let k = current.k();
-        let mut reach: Vec<f64> = (0..current.len())
-            .filter_map(|i| current.distances_of(i).last().copied())
+        let k = rows.k();
+        let mut reach: Vec<f64> = (0..rows.len())
+            .filter_map(|r| rows.distances_of(r).last().copied())
             .collect();
         if reach.is_empty() {
             break;
@@ -709,17 +724,34 @@ fn measure_noise(
             break;
         }
         let grown_k = (grown.ceil() as usize).min(MOST_NEIGHBOURS);
-        let neighbours = Neighbours::with_tree(tree, points, grown_k);
-        let grown_normals = if estimated {
+        rows = Neighbours::of_some(tree, points, &sample, grown_k);
+        let sampled_normals: Vec<[f64; 3]> = if estimated {
+            (sample.iter().enumerate())
+                .map(|(r, &i)| normal_of(points, i, rows.of(r)))
+                .collect()
+        } else {
+            sample.iter().map(|&i| normals[i]).collect()
+        };
+        noise = median_quadric_residual(
+            points,
+            (sample.iter().enumerate()).map(|(r, &i)| (i, sampled_normals[r], rows.of(r))),
+        );
+        grown_to = Some(grown_k);
+    }
+    let wide = grown_to.map(|k| {
+        let neighbours = Neighbours::with_tree(tree, points, k);
+        let normals = if estimated {
             estimate_normals(points, &neighbours)
         } else {
             normals.to_vec()
         };
-        noise = median_quadric_residual(points, &grown_normals, &neighbours);
-        wide = Some((neighbours, grown_normals));
-    }
+        (neighbours, normals)
+    });
     (noise, wide)
 }
+
+/// Points the noise is measured at (a sample of the scan).
+const NOISE_SAMPLE: usize = 4000;
 
 /// Grown neighbourhoods and the normals estimated on them.
 type Grown = (Neighbours, Vec<[f64; 3]>);
@@ -801,17 +833,17 @@ fn project_onto_local_planes(
         .collect()
 }
 
-/// The noise of a scan: the median over points of the RMS residual of a quadratic height
-/// function fitted to the point's neighbourhood over its tangent plane (a plane would count
-/// the surface's curvature as noise; a quadric takes it out).
-fn median_quadric_residual(points: &[[f64; 3]], normals: &[[f64; 3]], near: &Neighbours) -> f64 {
-    // A median needs no more than a few thousand of them.
-    let step = (points.len() / 4000).max(1);
-    let mut rms: Vec<f64> = (0..points.len())
-        .step_by(step)
-        .filter_map(|i| {
-            let (p, n) = (points[i], normals[i]);
-            let others = near.of(i);
+/// The noise of a scan: the median over the given neighbourhoods (a point's index, its normal,
+/// its neighbours) of the RMS residual of a quadratic height function fitted to the
+/// neighbourhood over the point's tangent plane (a plane would count the surface's curvature
+/// as noise; a quadric takes it out).
+fn median_quadric_residual<'a>(
+    points: &[[f64; 3]],
+    neighbourhoods: impl Iterator<Item = (usize, [f64; 3], &'a [u32])>,
+) -> f64 {
+    let mut rms: Vec<f64> = neighbourhoods
+        .filter_map(|(i, n, others)| {
+            let p = points[i];
             if others.len() < 8 || n.iter().all(|&c| c == 0.0) {
                 return None;
             }
