@@ -420,11 +420,16 @@ pub fn reconstruct(
     let mut fitted = report.constraints.clone();
     // Probes beyond where the surface may pass (the tolerance), or they would pin it.
     let probe = distance.max(3.0 * tolerance * longest);
-    let mut outside: Vec<Constraint<3>> =
-        outward_probes(&spread_tree, &spread_points, &spread_normals, &spread_near, probe)
-            .into_iter()
-            .map(|(q, out)| Constraint::exterior(q, -out / distance))
-            .collect();
+    let mut outside: Vec<Constraint<3>> = outward_probes(
+        &spread_tree,
+        &spread_points,
+        &spread_normals,
+        &spread_near,
+        probe,
+    )
+    .into_iter()
+    .map(|(q, out)| Constraint::exterior(q, -out / distance))
+    .collect();
     // And the 26 points around the box grown by a fifth (corners, edges, faces), where the
     // scan must be closed off too.
     let shell = grown_box_shell(&kept, longest);
