@@ -993,15 +993,7 @@ mod tests {
     #[test]
     fn a_reversed_normal_probes_inside_and_its_probe_is_not_used() {
         let n = 2000;
-        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-        let points: Vec<[f64; 3]> = (0..n)
-            .map(|i| {
-                let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-                let r = (1.0 - z * z).sqrt();
-                let t = golden * i as f64;
-                [r * t.cos(), r * t.sin(), z]
-            })
-            .collect();
+        let points = rbf_core::shapes::fibonacci_sphere(n);
         let mut normals = points.clone();
         normals[700] = normals[700].map(|c| -c);
         let tree = PointTree::new(&points);
