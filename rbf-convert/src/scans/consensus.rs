@@ -99,6 +99,9 @@ pub(crate) fn flip_against_fits(
     Ok(flipped)
 }
 
+/// A jury fit's value and gradient at a point.
+type Verdict = (f64, [f64; 3]);
+
 /// Values and gradients at every point of a fit to the points `chosen`; `None` where that fit is
 /// too ill-conditioned to solve.
 fn outward(
@@ -106,7 +109,7 @@ fn outward(
     normals: &[[f64; 3]],
     chosen: &[usize],
     settings: &FitSettings,
-) -> Result<Option<Vec<(f64, [f64; 3])>>, ConvertError> {
+) -> Result<Option<Vec<Verdict>>, ConvertError> {
     let constraints: Vec<Constraint<3>> = chosen
         .iter()
         .map(|&i| Constraint::normal(points[i], normals[i]))
