@@ -5,7 +5,9 @@
 //! al. 2021, Lin et al. 2024). Each point is judged by the field at two probes along its
 //! normal, as far as each stays nearer to it than to any other point (so, inward, near the
 //! middle of the part): a normal whose inward probe sees less of the field than its outward one
-//! points the wrong way.
+//! points the wrong way, and so does one whose probes see a negative field between them: a
+//! closed part reached the wrong way as a whole (a foot through the gap where it touches the
+//! body) agrees with itself probe by probe, but its field is −1 inside, where a right one is 1.
 //!
 //! Propagated orientation (and the coarse fits that vote on it, [`super::consensus`]) go wrong
 //! in whole patches: a wrong sign reached through one bad edge spreads to everything behind
@@ -19,11 +21,15 @@ use super::reconstruct::unit;
 /// The probes reach at most this fraction of the box's longest side from their point.
 const REACH: f64 = 0.1;
 
+/// A point is in a part that points in as a whole where the field at its two probes together
+/// is below minus this (about −1 there, 1 where the part points out).
+const INSIDE_OUT: f64 = 0.5;
+
 /// A probe nearer to its point than this many spacings is too close to judge by.
 const CLOSEST: f64 = 2.0;
 
 /// Flips the normals of `points` whose inward probe sees less winding number than their
-/// outward one; returns how many. `near` holds the points' eight nearest neighbours (see
+/// outward one, or whose two probes see less than −½ together; returns how many. `near` holds the points' eight nearest neighbours (see
 /// [`winding_field`]) and `longest` is the box's longest side.
 pub(crate) fn flip_against_winding(
     points: &[[f64; 3]],
@@ -51,9 +57,14 @@ pub(crate) fn flip_against_winding(
     if !(*sorted.select_nth_unstable_by(middle, f64::total_cmp).1 > 0.0) {
         return 0;
     }
+    // The two probes together: about 1 + 0 where the part around a point points out, and
+    // 0 − 1 where a whole closed part points in (a foot, a body reached the wrong way as a
+    // whole). There the gap is right by the part's own field, but the field is negative:
+    // every such point turns at once, and the part points out.
+    let sums: Vec<f64> = field.chunks(2).map(|w| w[0] + w[1]).collect();
     let mut flipped = 0;
-    for (&i, gap) in judged.iter().zip(gaps) {
-        if gap < 0.0 {
+    for ((&i, gap), sum) in judged.iter().zip(gaps).zip(sums) {
+        if gap < 0.0 || sum < -INSIDE_OUT {
             normals[i] = normals[i].map(|c| -c);
             flipped += 1;
         }
@@ -156,6 +167,7 @@ pub(crate) fn solid_angle(q: &[f64; 3], p: &[f64; 3], m: &[f64; 3]) -> f64 {
 #[cfg(test)]
 pub(super) mod tests {
     use super::flip_against_winding;
+    use crate::scans::reconstruct::unit;
 
     /// Points on a torus around z (radii 1 and 0.4) by a golden-ratio lattice, with their
     /// outward normals.
@@ -234,6 +246,44 @@ pub(super) mod tests {
         }
         let flipped = flip_against_winding(&points, &mut normals, &near, 2.8);
         assert_eq!(flipped, patch.len());
+        assert_eq!(normals, truth);
+    }
+
+    /// A foot that points in as a whole (as propagation leaves one reached through the gap
+    /// where it nearly touches the body; here 0.4 from it, so that every point of it has
+    /// probes clear of the body): by its own field every one of its normals is right (the
+    /// gap between its probes is positive), but the field of the whole scan is −1 inside it.
+    /// Nearly all of it turns at once (the rest, once the foot points out, by the gap between
+    /// their probes in a second pass, as the passes repeat in the pipeline), and nothing of
+    /// the body.
+    #[test]
+    fn a_closed_part_that_points_in_as_a_whole_is_turned() {
+        let body = rbf_core::shapes::fibonacci_sphere(6000);
+        let foot: Vec<[f64; 3]> = rbf_core::shapes::fibonacci_sphere(1500)
+            .into_iter()
+            .map(|p| [1.8 + 0.4 * p[0], 0.4 * p[1], 0.4 * p[2]])
+            .collect();
+        let points: Vec<[f64; 3]> = body.iter().chain(&foot).copied().collect();
+        let truth: Vec<[f64; 3]> = body
+            .iter()
+            .copied()
+            .chain(foot.iter().map(|p| unit([p[0] - 1.8, p[1], p[2]])))
+            .collect();
+        let mut normals: Vec<[f64; 3]> = (0..points.len())
+            .map(|i| {
+                if i < body.len() {
+                    truth[i]
+                } else {
+                    truth[i].map(|c| -c)
+                }
+            })
+            .collect();
+        let near = rbf_cloud::Neighbours::new(&points, 8);
+        let first = flip_against_winding(&points, &mut normals, &near, 3.2);
+        assert!(first > foot.len() * 9 / 10, "{first} of {}", foot.len());
+        assert_eq!(normals[..body.len()], truth[..body.len()]);
+        let second = flip_against_winding(&points, &mut normals, &near, 3.2);
+        assert_eq!(first + second, foot.len());
         assert_eq!(normals, truth);
     }
 }
