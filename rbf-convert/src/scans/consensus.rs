@@ -62,7 +62,8 @@ impl Juries {
 /// Flips the normals of `points` that a coarse fit to the others says point inward; returns how
 /// many. `juries` are those of `points`; `near` is the distance within which the coarse surface
 /// must pass for its slope to count, in the points' units. A jury whose fit cannot be solved
-/// even to [`VOTE_RESIDUAL`] abstains: its points keep their signs.
+/// even to [`VOTE_RESIDUAL`] (or whose inside points fall on its points) abstains: the points
+/// it judges keep their signs.
 pub(crate) fn flip_against_fits(
     points: &[[f64; 3]],
     normals: &mut [[f64; 3]],
@@ -102,8 +103,8 @@ pub(crate) fn flip_against_fits(
 /// A jury fit's value and gradient at a point.
 type Verdict = (f64, [f64; 3]);
 
-/// Values and gradients at every point of a fit to the points `chosen`; `None` where that fit is
-/// too ill-conditioned to solve.
+/// Values and gradients at every point of a fit to the points `chosen`; `None` where that fit
+/// cannot be solved (ill-conditioned or singular, or an inside point on another point).
 fn outward(
     points: &[[f64; 3]],
     normals: &[[f64; 3]],
@@ -116,7 +117,11 @@ fn outward(
         .collect();
     let fit = match rbf_solve::fit(&constraints, settings) {
         Ok(fit) => fit,
-        Err(FitError::IllConditioned { .. } | FitError::Singular { .. }) => return Ok(None),
+        Err(
+            FitError::IllConditioned { .. }
+            | FitError::Singular { .. }
+            | FitError::Coincident { .. },
+        ) => return Ok(None),
         Err(e) => return Err(e.into()),
     };
     let mut values = vec![0.0; points.len()];
@@ -142,26 +147,28 @@ mod tests {
     use super::{Juries, flip_against_fits};
     use rbf_core::{FitSettings, NormalOffset};
 
-    /// Where one point lies on another's inside offset point (to 1e-9 of the box, a hair
-    /// beyond coincident), the jury's exact fit asks f for two values there and cannot be
-    /// solved: the vote goes on without that jury instead of failing the reconstruction (a
-    /// simulated sword scan, a blade thinner than its noise, stopped there). The other jury
-    /// still votes: a normal reversed among its points is turned back.
+    /// Where one point lies 1e-7 from another's inside offset point (beyond coincident, 2e-9
+    /// here), the jury's exact fit asks f for two values there and cannot be solved, even to
+    /// the vote's 1e-3: the vote goes on without that jury instead of failing the
+    /// reconstruction (a simulated sword scan, a blade thinner than its noise, stopped there).
+    /// A normal reversed among the points that jury judges stays as it is; one among the
+    /// points the other jury judges is turned back.
     #[test]
     fn a_jury_that_cannot_be_solved_abstains() {
         // On the unit sphere, each point is its own outward normal.
         let mut points = rbf_core::shapes::fibonacci_sphere(6000);
         let mut normals = points.clone();
         let settings = FitSettings {
-            normal_offset: NormalOffset::Relative(0.01),
+            normal_offset: NormalOffset::Absolute(0.02),
             ..FitSettings::default()
         };
-        // The sphere's box is 2 wide: point 0's inside point is 0.02 in.
         let n = normals[0];
-        let inner = core::array::from_fn(|d| points[0][d] - 0.02 * n[d] + 2e-9);
+        let inner = core::array::from_fn(|d| points[0][d] - 0.02 * n[d] + 1e-7);
         points.push(inner);
         normals.push(n);
         let clash = points.len() - 1;
+        // The first jury (even points, and the clash) judges the odd points; the second (odd
+        // points) the even ones.
         let juries = Juries {
             spreads: [
                 (0..3000).step_by(2).chain([clash]).collect(),
@@ -169,11 +176,12 @@ mod tests {
             ],
             judge: (0..points.len()).map(|i| usize::from(i % 2 == 0)).collect(),
         };
-        // A normal among the first jury's points, judged by the second.
         normals[10] = normals[10].map(|c| -c);
+        normals[11] = normals[11].map(|c| -c);
         let flipped = flip_against_fits(&points, &mut normals, &juries, &settings, 0.05)
             .expect("a jury that cannot be solved abstains");
         assert_eq!(flipped, 1);
         assert_eq!(normals[10], points[10]);
+        assert_eq!(normals[11], points[11].map(|c| -c));
     }
 }

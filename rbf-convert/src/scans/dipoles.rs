@@ -5,9 +5,10 @@
 //! al. 2021, Lin et al. 2024). Each point is judged by the field at two probes along its
 //! normal, as far as each stays nearer to it than to any other point (so, inward, near the
 //! middle of the part): a normal whose inward probe sees less of the field than its outward one
-//! points the wrong way, and so does one whose probes see a negative field between them: a
-//! closed part reached the wrong way as a whole (a foot through the gap where it touches the
-//! body) agrees with itself probe by probe, but its field is −1 inside, where a right one is 1.
+//! points the wrong way, and so, on a closed scan, does one whose two probes together see a
+//! negative field: a closed part reached the wrong way as a whole (a foot through the gap where
+//! it touches the body) agrees with itself probe by probe, but its field is −1 inside, where a
+//! right one is 1.
 //!
 //! Propagated orientation (and the coarse fits that vote on it, [`super::consensus`]) go wrong
 //! in whole patches: a wrong sign reached through one bad edge spreads to everything behind
@@ -25,12 +26,16 @@ const REACH: f64 = 0.1;
 /// is below minus this (about −1 there, 1 where the part points out).
 const INSIDE_OUT: f64 = 0.5;
 
+/// The scan counts as closed, for that test, where the median of those sums is above this.
+const CLOSED: f64 = 0.5;
+
 /// A probe nearer to its point than this many spacings is too close to judge by.
 const CLOSEST: f64 = 2.0;
 
 /// Flips the normals of `points` whose inward probe sees less winding number than their
-/// outward one, or whose two probes see less than −½ together; returns how many. `near` holds the points' eight nearest neighbours (see
-/// [`winding_field`]) and `longest` is the box's longest side.
+/// outward one, or (where most points' probes see about 1 together, as around a closed scan)
+/// whose two probes see less than −½ together; returns how many. `near` holds the points'
+/// eight nearest neighbours (see [`winding_field`]) and `longest` is the box's longest side.
 pub(crate) fn flip_against_winding(
     points: &[[f64; 3]],
     normals: &mut [[f64; 3]],
@@ -47,29 +52,37 @@ pub(crate) fn flip_against_winding(
     // The gap inward minus outward: about 1 where a normal is right, −1 where it is wrong. On a
     // simulated torus scan at 0.5 % noise, every one of the 187 gaps below 0 belonged to a
     // wrong normal, and 1 of the 9139 above. Where most gaps are not positive, the field says
-    // nothing (an open scan, a sheet), and nothing is flipped.
+    // nothing, and nothing is flipped.
     let gaps: Vec<f64> = field.chunks(2).map(|w| w[0] - w[1]).collect();
-    let mut sorted = gaps.clone();
-    if sorted.is_empty() {
-        return 0;
-    }
-    let middle = sorted.len() / 2;
-    if !(*sorted.select_nth_unstable_by(middle, f64::total_cmp).1 > 0.0) {
+    if !(median(&gaps) > 0.0) {
         return 0;
     }
     // The two probes together: about 1 + 0 where the part around a point points out, and
     // 0 − 1 where a whole closed part points in (a foot, a body reached the wrong way as a
-    // whole). There the gap is right by the part's own field, but the field is negative:
-    // every such point turns at once, and the part points out.
+    // whole). There the gap is right by the part's own field, but the field is negative, and
+    // the points of such a part whose probes are clear turn in the same pass. Only where the
+    // sums are mostly near 1, as around a closed scan: an open one's are not (a bowl seen from
+    // inside sums to about −0.6 everywhere, and is right).
     let sums: Vec<f64> = field.chunks(2).map(|w| w[0] + w[1]).collect();
+    let closed = median(&sums) > CLOSED;
     let mut flipped = 0;
     for ((&i, gap), sum) in judged.iter().zip(gaps).zip(sums) {
-        if gap < 0.0 || sum < -INSIDE_OUT {
+        if gap < 0.0 || (closed && sum < -INSIDE_OUT) {
             normals[i] = normals[i].map(|c| -c);
             flipped += 1;
         }
     }
     flipped
+}
+
+/// The median of `values` (NaN when there are none).
+fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    if sorted.is_empty() {
+        return f64::NAN;
+    }
+    let middle = sorted.len() / 2;
+    *sorted.select_nth_unstable_by(middle, f64::total_cmp).1
 }
 
 /// The points far enough from the rest of the scan along their normal, both ways, to be
@@ -249,13 +262,14 @@ pub(super) mod tests {
         assert_eq!(normals, truth);
     }
 
-    /// A foot that points in as a whole (as propagation leaves one reached through the gap
-    /// where it nearly touches the body; here 0.4 from it, so that every point of it has
-    /// probes clear of the body): by its own field every one of its normals is right (the
-    /// gap between its probes is positive), but the field of the whole scan is −1 inside it.
-    /// Nearly all of it turns at once (the rest, once the foot points out, by the gap between
-    /// their probes in a second pass, as the passes repeat in the pipeline), and nothing of
-    /// the body.
+    /// A foot that points in as a whole, as propagation leaves one reached through the gap
+    /// where it touches the body (here handed to the check so, 0.4 from the body, so that
+    /// every point of it has probes clear of the body; where it touches, the points beside
+    /// the contact have probes too short to judge and are left to the later rounds): by its
+    /// own field every one of its normals is right (the gap between its probes is positive),
+    /// but the field of the whole scan is −1 inside it. Nearly all of it turns at once (the
+    /// rest, once the foot points out, by the gap between their probes in a second pass, as
+    /// the passes repeat in the pipeline), and nothing of the body.
     #[test]
     fn a_closed_part_that_points_in_as_a_whole_is_turned() {
         let body = rbf_core::shapes::fibonacci_sphere(6000);
@@ -285,5 +299,25 @@ pub(super) mod tests {
         let second = flip_against_winding(&points, &mut normals, &near, 3.2);
         assert_eq!(first + second, foot.len());
         assert_eq!(normals, truth);
+    }
+
+    /// An open bowl seen from inside (its normals towards its centre) is right, though the
+    /// field at its probes sums to about −0.6: the sums are mostly far from 1, so the scan
+    /// does not count as closed, and nothing is turned by them.
+    #[test]
+    fn an_open_bowl_seen_from_inside_is_left_alone() {
+        let points: Vec<[f64; 3]> = rbf_core::shapes::fibonacci_sphere(3000)
+            .into_iter()
+            .filter(|p| p[2] < 0.0)
+            .collect();
+        let truth: Vec<[f64; 3]> = points.iter().map(|p| p.map(|c| -c)).collect();
+        let mut normals = truth.clone();
+        let near = rbf_cloud::Neighbours::new(&points, 8);
+        let flipped = flip_against_winding(&points, &mut normals, &near, 2.0);
+        assert!(
+            flipped * 100 < points.len(),
+            "{flipped} of {}",
+            points.len()
+        );
     }
 }
