@@ -12,9 +12,14 @@ use crate::{ConvertError, ReconstructReport};
 /// be kept.
 const SUPPORTED_SHARE: f64 = 0.5;
 
+/// A piece smaller than the area this many of the scan's points stand for (the mesh's area over
+/// their number) is a crumb: fewer points than that cannot show a piece of its own (a clean
+/// boat scan kept one of 8 triangles, 12 points' worth, beside the thin tip of its bow).
+const CRUMB_POINTS: f64 = 20.0;
+
 /// The pieces of `mesh` that the scan supports: those with at least half their vertices within
-/// `reach` of a scan point, and wider than twice the reach (finer than that, the scan cannot
-/// show a piece). An implicit surface fitted to a scan may close small bubbles far from every
+/// `reach` of a scan point, wider than twice the reach and larger than the area 20 of the
+/// points stand for (finer than that, the scan cannot show a piece). An implicit surface fitted to a scan may close small bubbles far from every
 /// point (where nothing constrains f); no scanned surface lies there. Returns the kept mesh and
 /// how many pieces were dropped; the largest piece is always kept.
 ///
@@ -39,14 +44,24 @@ pub fn supported_pieces(
         return Ok((mesh.clone(), 0));
     }
     let distances = distances_to_cloud(points, mesh.positions());
-    keep_pieces(mesh, reach, |v| distances[v as usize] <= reach)
+    let crumb = CRUMB_POINTS * area(mesh, 0..mesh.triangles().len()) / points.len().max(1) as f64;
+    keep_pieces(mesh, reach, crumb, |v| distances[v as usize] <= reach)
 }
 
-/// `mesh` without the pieces (but the largest) that have fewer than half their vertices `near`
-/// or are no wider than twice `reach`, and how many were dropped.
+/// The area of the triangles `which` of `mesh`.
+fn area(mesh: &TriMesh, which: impl IntoIterator<Item = usize>) -> f64 {
+    which
+        .into_iter()
+        .map(|t| 0.5 * rbf_core::vec3::norm(mesh.area_vector(t)))
+        .sum()
+}
+
+/// `mesh` without the pieces (but the largest) that have fewer than half their vertices `near`,
+/// are no wider than twice `reach` or have less area than `crumb`, and how many were dropped.
 fn keep_pieces(
     mesh: &TriMesh,
     reach: f64,
+    crumb: f64,
     near: impl Fn(u32) -> bool,
 ) -> Result<(TriMesh, usize), MeshError> {
     let pieces = mesh.components();
@@ -67,8 +82,9 @@ fn keep_pieces(
             }
         }
         let width = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
-        let shown =
-            supported as f64 >= SUPPORTED_SHARE * vertices.len() as f64 && width > 2.0 * reach;
+        let shown = supported as f64 >= SUPPORTED_SHARE * vertices.len() as f64
+            && width > 2.0 * reach
+            && area(mesh, piece.iter().copied()) >= crumb;
         if i == 0 || shown {
             keep.extend_from_slice(piece);
         } else {
@@ -118,8 +134,8 @@ pub fn scan_mesh(
 
 /// The triangles of `mesh` whose corners all lie within `distance` of a scan point: the
 /// surface of an open scan (a face, a terrain) without what the implicit surface adds to close
-/// it; then, as in [`supported_pieces`], crumbs narrower than twice the distance that the cut
-/// leaves are dropped. The result is open; an error if nothing is left.
+/// it; then, as in [`supported_pieces`], crumbs that the cut leaves (narrower than twice the
+/// distance, or smaller than 20 points' worth of area) are dropped. The result is open; an error if nothing is left.
 ///
 /// ```
 /// use rbf_convert::trimmed;
@@ -139,6 +155,50 @@ pub fn trimmed(mesh: &TriMesh, points: &[[f64; 3]], distance: f64) -> Result<Tri
     let keep: Vec<usize> = (0..mesh.triangles().len())
         .filter(|&t| mesh.triangles()[t].iter().all(|&v| near[v as usize]))
         .collect();
-    // Every corner left is within the distance of a point: only the crumbs' width decides.
-    Ok(keep_pieces(&mesh.with_triangles(&keep)?, distance, |_| true)?.0)
+    // Every corner left is within the distance of a point: only the crumbs' size decides.
+    let cut = mesh.with_triangles(&keep)?;
+    let crumb = CRUMB_POINTS * area(&cut, 0..cut.triangles().len()) / points.len().max(1) as f64;
+    Ok(keep_pieces(&cut, distance, crumb, |_| true)?.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::supported_pieces;
+    use rbf_mesh::TriMesh;
+
+    /// A crumb beside the surface, wider than twice the reach and every vertex of it on a scan
+    /// point, but with the area of a point or two (as a clean boat scan kept one beside the
+    /// thin tip of its bow): dropped. The same piece, scaled up to hold many points' worth, is
+    /// kept.
+    #[test]
+    fn a_crumb_smaller_than_twenty_points_worth_is_dropped() {
+        let sphere = TriMesh::icosphere(4);
+        let small = TriMesh::icosphere(1);
+        let with_piece = |radius: f64| {
+            let mut positions = sphere.positions().to_vec();
+            let at = positions.len() as u32;
+            positions.extend(
+                small
+                    .positions()
+                    .iter()
+                    .map(|p| [1.2 + radius * p[0], radius * p[1], radius * p[2]]),
+            );
+            let mut triangles = sphere.triangles().to_vec();
+            triangles.extend(small.triangles().iter().map(|t| t.map(|v| v + at)));
+            TriMesh::new(positions, triangles).unwrap()
+        };
+        let crumb = with_piece(0.02);
+        // The scan: every vertex of the mesh, the crumb's too.
+        let points = crumb.positions().to_vec();
+        let (kept, dropped) = supported_pieces(&crumb, &points, 0.001).unwrap();
+        assert_eq!(dropped, 1);
+        assert_eq!(kept.triangles().len(), sphere.triangles().len());
+        let piece = with_piece(0.15);
+        let points = piece.positions().to_vec();
+        let (kept, dropped) = supported_pieces(&piece, &points, 0.001).unwrap();
+        assert_eq!(
+            (dropped, kept.triangles().len()),
+            (0, piece.triangles().len())
+        );
+    }
 }
