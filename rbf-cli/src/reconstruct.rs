@@ -35,8 +35,9 @@ through the middle of the noise; --tolerance asks for the greedy fit. Holes are 
 implicit surface itself, and where f is not negative just outside the scan (around it, and
 beside each point where the winding number of the oriented points does not say inside),
 outside constraints hold it down. The mesh is polygonized with cubes about one point spacing
-wide (thin parts keep their topology), without bubbles that no point is near; --trim D keeps only the surface within D of
-the points (an open scan's own surface, not what closes it).
+wide (thin parts keep their topology), without bubbles that no point is near or crumbs smaller
+than 20 points' worth of area; --trim D keeps only the surface within D of the points (an open
+scan's own surface, not what closes it).
 
 Clouds: .ply (ASCII or binary, with or without nx ny nz), .npy (N × 3 or N × 6), .xyz or .txt
 (x y z or x y z nx ny nz per line). Meshes out: .obj, .ply, .stl.

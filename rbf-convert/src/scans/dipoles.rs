@@ -76,7 +76,7 @@ pub(crate) fn flip_against_winding(
 }
 
 /// The median of `values` (NaN when there are none).
-fn median(values: &[f64]) -> f64 {
+pub(super) fn median(values: &[f64]) -> f64 {
     let mut sorted = values.to_vec();
     if sorted.is_empty() {
         return f64::NAN;
@@ -95,14 +95,13 @@ pub(crate) fn probes_along_normals(
     near: &Neighbours,
     longest: f64,
 ) -> Option<(Vec<usize>, Vec<[f64; 3]>)> {
-    let mut nearest: Vec<f64> = (0..near.len())
+    let nearest: Vec<f64> = (0..near.len())
         .filter_map(|i| near.distances_of(i).first().copied())
         .collect();
     if nearest.is_empty() {
         return None;
     }
-    let middle = nearest.len() / 2;
-    let spacing = *nearest.select_nth_unstable_by(middle, f64::total_cmp).1;
+    let spacing = median(&nearest);
     let offsets = clear_offsets(points, normals, REACH * longest);
     let judged: Vec<usize> = (0..points.len())
         .filter(|&i| offsets[i].iter().all(|&t| t >= CLOSEST * spacing))

@@ -484,14 +484,13 @@ pub fn reconstruct(
         fit = rbf_solve::fit(&fitted, &fit_settings)?;
     }
     let outside_added = added.iter().filter(|&&a| a).count();
-    let mut nearest: Vec<f64> = (0..near.len())
+    let nearest: Vec<f64> = (0..near.len())
         .filter_map(|i| near.distances_of(i).first().copied())
         .collect();
     let spacing = if nearest.is_empty() {
         0.0
     } else {
-        let middle = nearest.len() / 2;
-        *nearest.select_nth_unstable_by(middle, f64::total_cmp).1
+        super::dipoles::median(&nearest)
     };
     let support_reach = (1.5 * spacing).max(2.0 * tolerance * longest);
     // Outside means negative: check the shell around the box.

@@ -19,7 +19,8 @@ const CRUMB_POINTS: f64 = 20.0;
 
 /// The pieces of `mesh` that the scan supports: those with at least half their vertices within
 /// `reach` of a scan point, wider than twice the reach and larger than the area 20 of the
-/// points stand for (finer than that, the scan cannot show a piece). An implicit surface fitted to a scan may close small bubbles far from every
+/// points stand for (finer than that, the scan cannot show a piece). An implicit surface
+/// fitted to a scan may close small bubbles far from every
 /// point (where nothing constrains f); no scanned surface lies there. Returns the kept mesh and
 /// how many pieces were dropped; the largest piece is always kept.
 ///
