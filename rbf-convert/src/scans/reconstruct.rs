@@ -311,8 +311,8 @@ pub fn reconstruct(
     // A noisy scan's orientation goes wrong in patches (where it is thin, where noise hides
     // its edges). The winding number of the rest of the scan turns them back first, whole
     // patches and then single points (a coarse fit through a patch follows it); then fits to
-    // its points vote on every point's sign, until few change; then patches again, cut anew
-    // where those flips left edges, for a few rounds.
+    // its points vote on every point's sign, until few change (in the first round only); then
+    // patches again, cut anew where those flips left edges, for a few rounds.
     // One tree over the spread serves its neighbours, offsets and distances.
     let spread_tree = PointTree::new(&spread_points);
     let spread_near = Neighbours::with_tree(&spread_tree, &spread_points, 8);
@@ -322,7 +322,7 @@ pub fn reconstruct(
         super::patches::flip_patches(&spread_points, &mut spread_normals, &spread_near, longest);
     if noise > SMOOTH_ABOVE {
         let juries = super::consensus::Juries::new(&spread_points);
-        for _ in 0..SIGN_ROUNDS {
+        for round in 0..SIGN_ROUNDS {
             reversed_by_winding += repeat_passes(
                 WINDING_PASSES,
                 |now| now == 0,
@@ -335,7 +335,7 @@ pub fn reconstruct(
                     ))
                 },
             )?;
-            if let Some(juries) = &juries {
+            if let Some(juries) = juries.as_ref().filter(|_| round == 0) {
                 refuted += repeat_passes(
                     CONSENSUS_PASSES,
                     |now| now * 1000 < spread_points.len(),
@@ -662,15 +662,21 @@ fn grown_box_shell(points: &[[f64; 3]], longest: f64) -> Vec<[f64; 3]> {
 /// takes the few that the first's flips made clear (on a torus at 0.5 % noise, 253 then 1).
 const WINDING_PASSES: usize = 2;
 
-/// Rounds of the noisy scan's sign checks (winding number point by point, votes, patches), at
-/// most; they stop when the patches turn nothing. Each round's flips redraw the patches'
+/// Rounds of the noisy scan's sign checks (winding number point by point, votes in the first,
+/// patches), at most; they stop when the patches turn nothing. Each round's flips redraw the patches'
 /// edges, so the next finds more of a wrong region whole: on a simulated cow scan at 0.5 %
 /// noise, rounds turned 124, 80 and 49 more normals by patches, and its F-score at 0.5 % went
 /// from 0.883 (one round) to 0.916 (two) and 0.924 (three; four: 0.925).
 const SIGN_ROUNDS: usize = 3;
 
 /// Passes of [`super::consensus::flip_against_fits`] over a noisy scan, at most; they stop
-/// once fewer than one normal in a thousand changes.
+/// once fewer than one normal in a thousand changes. They run in the first sign round only:
+/// what the coarse fits still dispute after it is finer than they see, and the patches turn
+/// it back. On a simulated boot scan at 0.5 % noise, the votes of the second and third rounds
+/// flipped 90 and 81 normals, 22 and 24 of them to the right side, and the patches after them
+/// turned 89 of the first 90 back; over 17 corpus meshes at 0.5 % noise, votes in the first
+/// round only left as many wrong normals or fewer on all but the fish (94 → 105) and took
+/// 2.5–4.5 s off each scan.
 const CONSENSUS_PASSES: usize = 3;
 
 /// Rounds of outside constraints, at most. Each adds every probe where f strayed (up to
