@@ -41,7 +41,10 @@ pub use polygonize::{
     BlockSkip, PolygonizeSettings, PolygonizeStats, Resolution, SurfaceBox,
     polygonize_continuation, polygonize_grid, surface_extent, surface_seeds,
 };
-pub use queries::{WindingTree, sample_surface, winding_numbers, winding_numbers_exact};
+pub use queries::{
+    DipoleTree, WindingTree, dipole_winding_numbers, sample_surface, winding_numbers,
+    winding_numbers_exact,
+};
 pub use volumes::{
     MAX_SUPERSAMPLING, Volume, VoxelMethod, VoxelSettings, check_volume_size, classify_blocks,
     has_other_neighbour, signed_distance, squared_distance_transform, voxelize,

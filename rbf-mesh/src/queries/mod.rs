@@ -1,9 +1,12 @@
-//! Questions asked of a mesh: inside or outside (winding numbers), the closest point, points
-//! spread over its surface.
+//! Questions asked of a mesh: inside or outside (winding numbers, also of oriented points), the
+//! closest point, points spread over its surface.
 
 mod closest;
+mod clusters;
+mod dipoles;
 mod sample;
 mod winding;
 
+pub use dipoles::{DipoleTree, dipole_winding_numbers};
 pub use sample::sample_surface;
 pub use winding::{WindingTree, winding_numbers, winding_numbers_exact};

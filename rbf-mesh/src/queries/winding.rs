@@ -6,6 +6,7 @@
 
 use rayon::prelude::*;
 
+use super::clusters::{Clusters, Elements, Reach};
 use crate::TriMesh;
 use rbf_core::vec3::{cross, dot, norm, sub};
 
@@ -19,34 +20,17 @@ fn solid_angle(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> f64 {
     2.0 * numerator.atan2(denominator)
 }
 
-/// A node of the hierarchy: its triangles are `order[start..end]`.
-struct Node {
-    start: usize,
-    end: usize,
-    /// Children, or none for a leaf.
-    children: Option<(usize, usize)>,
-    /// Σ area vectors (½ (b − a) × (c − a)).
-    area: [f64; 3],
-    /// Area-weighted centroid.
-    centre: [f64; 3],
-    /// Σ area vector ⊗ (triangle centroid − centre), for the second-order term.
-    moment: [[f64; 3]; 3],
-    /// Largest distance from `centre` to a corner of the node's triangles.
-    radius: f64,
-}
-
-/// Triangles per leaf.
-const LEAF: usize = 8;
-/// A cluster counts as far when the query is this many radii from its centre.
-const FAR: f64 = 1.5;
-/// Clusters within this many times the far distance also get the second-order term.
-const SECOND_ORDER: f64 = 2.5;
+/// A cluster counts as far from 1.5 of its radii; the second-order term is added out to 2.5
+/// times that (it falls off as (radius / distance)²).
+const REACH: Reach = Reach {
+    far: 1.5,
+    second_order: 3.75,
+};
 
 /// A mesh prepared for fast winding-number queries.
 pub struct WindingTree {
     corners: Vec<[[f64; 3]; 3]>,
-    order: Vec<usize>,
-    nodes: Vec<Node>,
+    clusters: Clusters,
 }
 
 impl WindingTree {
@@ -55,84 +39,27 @@ impl WindingTree {
         let corners: Vec<[[f64; 3]; 3]> = (0..mesh.triangles().len())
             .map(|t| mesh.corners(t))
             .collect();
-        let mut tree = Self {
-            order: (0..corners.len()).collect(),
-            corners,
-            nodes: Vec::new(),
+        let area = |t: usize| {
+            let [a, b, c] = corners[t];
+            cross(sub(b, a), sub(c, a)).map(|x| 0.5 * x)
         };
-        if !tree.corners.is_empty() {
-            tree.build(0, tree.corners.len());
-        }
-        tree
-    }
-
-    fn build(&mut self, start: usize, end: usize) -> usize {
-        let mut area = [0.0; 3];
-        let mut weighted = [0.0; 3];
-        let mut total = 0.0;
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for &t in &self.order[start..end] {
-            let [a, b, c] = self.corners[t];
-            let av = cross(sub(b, a), sub(c, a)).map(|x| 0.5 * x);
-            let w = norm(av);
-            for d in 0..3 {
-                area[d] += av[d];
-                let centroid = (a[d] + b[d] + c[d]) / 3.0;
-                weighted[d] += w * centroid;
-                lo[d] = lo[d].min(centroid);
-                hi[d] = hi[d].max(centroid);
-            }
-            total += w;
-        }
-        let centre = if total > 0.0 {
-            weighted.map(|x| x / total)
-        } else {
-            core::array::from_fn(|d| 0.5 * (lo[d] + hi[d]))
+        let centroid = |t: usize| {
+            let [a, b, c] = corners[t];
+            core::array::from_fn(|d| (a[d] + b[d] + c[d]) / 3.0)
         };
-        let mut moment = [[0.0; 3]; 3];
-        for &t in &self.order[start..end] {
-            let [a, b, c] = self.corners[t];
-            let av = cross(sub(b, a), sub(c, a)).map(|x| 0.5 * x);
-            let offset: [f64; 3] = core::array::from_fn(|d| (a[d] + b[d] + c[d]) / 3.0 - centre[d]);
-            for i in 0..3 {
-                for j in 0..3 {
-                    moment[i][j] += av[i] * offset[j];
-                }
-            }
-        }
-        let radius = self.order[start..end]
-            .iter()
-            .flat_map(|&t| self.corners[t])
-            .map(|p| norm(sub(p, centre)))
-            .fold(0.0, f64::max);
-        let id = self.nodes.len();
-        self.nodes.push(Node {
-            start,
-            end,
-            children: None,
-            area,
-            centre,
-            moment,
-            radius,
-        });
-        if end - start > LEAF {
-            let axis = (0..3)
-                .max_by(|&x, &y| (hi[x] - lo[x]).total_cmp(&(hi[y] - lo[y])))
-                .unwrap_or(0);
-            let mid = (start + end) / 2;
-            let corners = &self.corners;
-            let key = |t: &usize| {
-                let [a, b, c] = corners[*t];
-                a[axis] + b[axis] + c[axis]
-            };
-            self.order[start..end]
-                .select_nth_unstable_by(mid - start, |x, y| key(x).total_cmp(&key(y)));
-            let left = self.build(start, mid);
-            let right = self.build(mid, end);
-            self.nodes[id].children = Some((left, right));
-        }
-        id
+        let reach = |t: usize, from: [f64; 3]| {
+            corners[t]
+                .iter()
+                .map(|&p| norm(sub(p, from)))
+                .fold(0.0, f64::max)
+        };
+        let elements = Elements {
+            area: &area,
+            centroid: &centroid,
+            reach: &reach,
+        };
+        let clusters = Clusters::new(corners.len(), &elements);
+        Self { corners, clusters }
     }
 
     /// The winding number at p: exact for near triangles, expansions for far clusters (1
@@ -148,79 +75,31 @@ impl WindingTree {
     /// assert!(tree.winding_number([3.0, 0.0, 0.0]) < 0.5);
     /// ```
     pub fn winding_number(&self, p: [f64; 3]) -> f64 {
-        if self.nodes.is_empty() {
-            return 0.0;
-        }
-        let mut sum = 0.0;
-        // The tree is balanced, so its depth is about log2(triangles / LEAF): 64 is plenty.
-        let mut stack = [0usize; 64];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let n = stack[top];
-            let node = &self.nodes[n];
-            let r = sub(node.centre, p);
-            let d = norm(r);
-            if d > FAR * node.radius {
-                let d3 = d * d * d;
-                sum += dot(node.area, r) / d3;
-                // Each triangle's solid angle ≈ A·g(c) with g(x) = (x − p)/|x − p|³, expanded
-                // about the cluster's centre: N·g + Σ J:M with J = ∇g. The second-order term
-                // falls off as (radius / distance)², so far clusters skip it.
-                if d < SECOND_ORDER * FAR * node.radius {
-                    let d5 = d3 * d * d;
-                    let m = &node.moment;
-                    let trace = m[0][0] + m[1][1] + m[2][2];
-                    let mut rmr = 0.0;
-                    for i in 0..3 {
-                        rmr += r[i] * (m[i][0] * r[0] + m[i][1] * r[1] + m[i][2] * r[2]);
-                    }
-                    sum += trace / d3 - 3.0 * rmr / d5;
-                }
-                continue;
-            }
-            match node.children {
-                Some((a, b)) if top + 2 <= stack.len() => {
-                    stack[top] = a;
-                    stack[top + 1] = b;
-                    top += 2;
-                }
-                Some(_) => {
-                    // Deeper than the stack: count the cluster by its expansion.
-                    sum += dot(node.area, r) / (d * d * d);
-                }
-                None => {
-                    for &t in &self.order[node.start..node.end] {
-                        let [a, b, c] = self.corners[t];
-                        sum += solid_angle(a, b, c, p);
-                    }
-                }
-            }
-        }
+        let sum = self.clusters.solid_angle(p, REACH, |t| {
+            let [a, b, c] = self.corners[t];
+            solid_angle(a, b, c, p)
+        });
         sum / (4.0 * std::f64::consts::PI)
     }
 }
 
 impl WindingTree {
     pub(crate) fn root(&self) -> Option<usize> {
-        (!self.nodes.is_empty()).then_some(0)
+        self.clusters.root()
     }
 
     /// A node's bounding sphere.
     pub(crate) fn bounds(&self, n: usize) -> ([f64; 3], f64) {
-        (self.nodes[n].centre, self.nodes[n].radius)
+        self.clusters.bounds(n)
     }
 
     pub(crate) fn children(&self, n: usize) -> Option<(usize, usize)> {
-        self.nodes[n].children
+        self.clusters.children(n)
     }
 
     /// The corners of a leaf's triangles.
     pub(crate) fn leaf_triangles(&self, n: usize) -> impl Iterator<Item = [[f64; 3]; 3]> + '_ {
-        let node = &self.nodes[n];
-        self.order[node.start..node.end]
-            .iter()
-            .map(|&t| self.corners[t])
+        self.clusters.elements(n).iter().map(|&t| self.corners[t])
     }
 }
 
@@ -228,22 +107,22 @@ impl WindingTree {
     /// True when some triangle comes within `radius` of `centre` (tested on bounding spheres of
     /// the hierarchy and boxes of the triangles).
     pub(crate) fn any_triangle_near(&self, centre: [f64; 3], radius: f64) -> bool {
-        if self.nodes.is_empty() {
+        let Some(root) = self.root() else {
             return false;
-        }
-        let mut stack = vec![0usize];
+        };
+        let mut stack = vec![root];
         while let Some(n) = stack.pop() {
-            let node = &self.nodes[n];
-            if norm(sub(node.centre, centre)) > node.radius + radius {
+            let (at, reach) = self.bounds(n);
+            if norm(sub(at, centre)) > reach + radius {
                 continue;
             }
-            match node.children {
+            match self.children(n) {
                 Some((a, b)) => {
                     stack.push(a);
                     stack.push(b);
                 }
                 None => {
-                    for &t in &self.order[node.start..node.end] {
+                    for &t in self.clusters.elements(n) {
                         let near = (0..3).all(|d| {
                             let lo = self.corners[t]
                                 .iter()

@@ -2,6 +2,7 @@
 
 mod checks;
 mod closest;
+mod dipoles;
 mod distance;
 mod formats;
 mod polygonize;
