@@ -121,7 +121,8 @@ pub(crate) fn probes_along_normals(
 
 /// The winding number of the oriented `points` at each probe (about 1 inside a closed scan, 0
 /// outside), `near` their eight nearest neighbours: each point stands for the area of a disc
-/// reaching its eighth neighbour, shared by nine.
+/// reaching its eighth neighbour, shared by nine. Summed through rbf-mesh's cluster hierarchy
+/// ([`rbf_mesh::DipoleTree`]).
 pub(crate) fn winding_field(
     points: &[[f64; 3]],
     normals: &[[f64; 3]],
@@ -129,23 +130,7 @@ pub(crate) fn winding_field(
     probes: &[[f64; 3]],
 ) -> Vec<f64> {
     let moments = moments(points, normals, near);
-    winding_numbers(points, &moments, probes)
-}
-
-/// The winding number at each probe of the dipoles at `points` with `moments` (area times
-/// outward normal): Σ m·(p − q) / (4π |p − q|³), by direct sums.
-fn winding_numbers(points: &[[f64; 3]], moments: &[[f64; 3]], probes: &[[f64; 3]]) -> Vec<f64> {
-    use rayon::prelude::*;
-    probes
-        .par_iter()
-        .map(|q| {
-            let mut sum = 0.0;
-            for (p, m) in points.iter().zip(moments) {
-                sum += solid_angle(q, p, m);
-            }
-            sum
-        })
-        .collect()
+    rbf_mesh::dipole_winding_numbers(points, &moments, probes)
 }
 
 /// Each point's dipole moment: its normal times the area it stands for, a disc reaching its
@@ -162,18 +147,6 @@ pub(crate) fn moments(
             unit(normals[i]).map(|c| area * c)
         })
         .collect()
-}
-
-/// The winding number at `q` of one dipole at `p` with moment `m` (area times outward normal):
-/// m·(p − q) / (4π |p − q|³), 0 at `p` itself.
-pub(crate) fn solid_angle(q: &[f64; 3], p: &[f64; 3], m: &[f64; 3]) -> f64 {
-    let r = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-    let r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-    if r2 > 0.0 {
-        (m[0] * r[0] + m[1] * r[1] + m[2] * r[2]) / (4.0 * core::f64::consts::PI * r2 * r2.sqrt())
-    } else {
-        0.0
-    }
 }
 
 #[cfg(test)]

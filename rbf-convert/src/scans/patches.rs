@@ -16,7 +16,9 @@
 use rayon::prelude::*;
 use rbf_cloud::Neighbours;
 
-use super::dipoles::{moments, probes_along_normals, solid_angle};
+use rbf_mesh::DipoleTree;
+
+use super::dipoles::{moments, probes_along_normals};
 use super::reconstruct::unit;
 
 /// Neighbouring normals further apart than this (cosine of the angle, 35°) cut the patches.
@@ -142,7 +144,8 @@ fn patches(normals: &[[f64; 3]], near: &Neighbours) -> (Vec<usize>, usize) {
 }
 
 /// A(P, Q) (row-major, `count` × `count`): over the `judged` points of P, the winding number
-/// of Q's dipoles at the inward probe minus that at the outward one (`probes` in pairs).
+/// of Q's dipoles at the inward probe minus that at the outward one (`probes` in pairs). Each
+/// patch's dipoles are summed through a hierarchy of their own ([`rbf_mesh::DipoleTree`]).
 fn agreement(
     points: &[[f64; 3]],
     normals: &[[f64; 3]],
@@ -153,36 +156,36 @@ fn agreement(
     probes: &[[f64; 3]],
 ) -> Vec<f64> {
     let moments = moments(points, normals, near);
-    // Judged points in patch order, so that a run of them adds to few rows.
-    let mut order: Vec<usize> = (0..judged.len()).collect();
-    order.sort_by_key(|&k| labels[judged[k]]);
-    let rows: Vec<(usize, Vec<f64>)> = order
-        .par_chunks(64)
-        .flat_map_iter(|run| {
-            // Each run's points in patch order: one row per patch it meets.
-            let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
-            let mut row = vec![0.0; count];
-            for (n, &k) in run.iter().enumerate() {
-                let p = labels[judged[k]];
-                let (inward, outward) = (&probes[2 * k], &probes[2 * k + 1]);
-                for ((x, m), &q) in points.iter().zip(&moments).zip(labels) {
-                    row[q] += solid_angle(inward, x, m) - solid_angle(outward, x, m);
-                }
-                let next = run.get(n + 1).map(|&k| labels[judged[k]]);
-                if next != Some(p) {
-                    rows.push((p, std::mem::replace(&mut row, vec![0.0; count])));
-                }
-            }
-            rows
+    let trees: Vec<DipoleTree> = (0..count)
+        .map(|q| {
+            let (at, moment): (Vec<[f64; 3]>, Vec<[f64; 3]>) = (0..points.len())
+                .filter(|&i| labels[i] == q)
+                .map(|i| (points[i], moments[i]))
+                .unzip();
+            DipoleTree::new(&at, &moment)
         })
         .collect();
-    let mut a = vec![0.0; count * count];
-    for (p, row) in rows {
-        for (q, v) in row.into_iter().enumerate() {
-            a[p * count + q] += v;
-        }
-    }
-    a
+    judged
+        .par_iter()
+        .enumerate()
+        .fold(
+            || vec![0.0; count * count],
+            |mut a, (k, &i)| {
+                let (inward, outward) = (probes[2 * k], probes[2 * k + 1]);
+                let row = &mut a[labels[i] * count..][..count];
+                for (v, tree) in row.iter_mut().zip(&trees) {
+                    *v += tree.winding_number(inward) - tree.winding_number(outward);
+                }
+                a
+            },
+        )
+        .reduce(
+            || vec![0.0; count * count],
+            |mut a, b| {
+                a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
+                a
+            },
+        )
 }
 
 #[cfg(test)]
