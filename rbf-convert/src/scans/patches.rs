@@ -156,36 +156,43 @@ fn agreement(
     probes: &[[f64; 3]],
 ) -> Vec<f64> {
     let moments = moments(points, normals, near);
-    let trees: Vec<DipoleTree> = (0..count)
-        .map(|q| {
-            let (at, moment): (Vec<[f64; 3]>, Vec<[f64; 3]>) = (0..points.len())
-                .filter(|&i| labels[i] == q)
-                .map(|i| (points[i], moments[i]))
-                .unzip();
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); count];
+    for (i, &label) in labels.iter().enumerate() {
+        members[label].push(i);
+    }
+    let trees: Vec<DipoleTree> = members
+        .iter()
+        .map(|of| {
+            let at: Vec<[f64; 3]> = of.iter().map(|&i| points[i]).collect();
+            let moment: Vec<[f64; 3]> = of.iter().map(|&i| moments[i]).collect();
             DipoleTree::new(&at, &moment)
         })
         .collect();
-    judged
-        .par_iter()
-        .enumerate()
-        .fold(
-            || vec![0.0; count * count],
-            |mut a, (k, &i)| {
+    // Runs of judged points summed on every core, then added in order: the same sums whatever
+    // the threads did. A patch is not judged by its own field (A(P, P) is never read).
+    let runs: Vec<Vec<f64>> = (0..judged.len())
+        .collect::<Vec<usize>>()
+        .par_chunks(64)
+        .map(|run| {
+            let mut a = vec![0.0; count * count];
+            for &k in run {
+                let p = labels[judged[k]];
                 let (inward, outward) = (probes[2 * k], probes[2 * k + 1]);
-                let row = &mut a[labels[i] * count..][..count];
-                for (v, tree) in row.iter_mut().zip(&trees) {
-                    *v += tree.winding_number(inward) - tree.winding_number(outward);
+                let row = &mut a[p * count..][..count];
+                for (q, (v, tree)) in row.iter_mut().zip(&trees).enumerate() {
+                    if q != p {
+                        *v += tree.winding_number(inward) - tree.winding_number(outward);
+                    }
                 }
-                a
-            },
-        )
-        .reduce(
-            || vec![0.0; count * count],
-            |mut a, b| {
-                a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
-                a
-            },
-        )
+            }
+            a
+        })
+        .collect();
+    let mut a = vec![0.0; count * count];
+    for run in runs {
+        a.iter_mut().zip(run).for_each(|(x, y)| *x += y);
+    }
+    a
 }
 
 #[cfg(test)]

@@ -28,7 +28,8 @@ pub struct DipoleTree {
 
 impl DipoleTree {
     /// The hierarchy over dipoles at `points` with `moments` (area times outward normal);
-    /// a point without a moment (beyond the last) counts as none.
+    /// a point without a moment (beyond the last) has none, and moments beyond the last point
+    /// are ignored.
     pub fn new(points: &[[f64; 3]], moments: &[[f64; 3]]) -> Self {
         let points = points.to_vec();
         let moments: Vec<[f64; 3]> = (0..points.len())
@@ -89,8 +90,10 @@ impl DipoleTree {
 ///
 /// ```
 /// use rbf_mesh::dipole_winding_numbers;
-/// // One dipole of unit moment along z: a small patch facing +z seen from 1 above and below.
-/// let w = dipole_winding_numbers(&[[0.0; 3]], &[[0.0, 0.0, 1.0]], &[[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]]);
+/// // One dipole of unit moment along z (a small patch facing +z), seen from 1 below (behind
+/// // it, inside) and from 1 above.
+/// let probes = [[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]];
+/// let w = dipole_winding_numbers(&[[0.0; 3]], &[[0.0, 0.0, 1.0]], &probes);
 /// let quarter_pi = 1.0 / (4.0 * std::f64::consts::PI);
 /// assert!((w[0] - quarter_pi).abs() < 1e-12 && (w[1] + quarter_pi).abs() < 1e-12);
 /// ```

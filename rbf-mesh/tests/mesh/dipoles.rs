@@ -7,8 +7,8 @@ use crate::data;
 /// Spot's triangles taken as dipoles at their centroids (area vector as moment: an uneven
 /// spread, dense at the eyes and sparse on the flanks): at probes along the normals one to
 /// twenty mean spacings off the surface, and all over the box, the hierarchy's winding number is
-/// within 0.03 of the direct sum over every dipole, and both are within 0.1 of the mesh's own
-/// (exact) winding number where they are five spacings or more from every dipole.
+/// within 0.03 of the direct sum over every dipole, and within 0.1 of the mesh's own (exact)
+/// winding number where it is five spacings or more from every dipole.
 #[test]
 fn the_dipole_tree_agrees_with_direct_sums() {
     let mesh = read_mesh(&data("spot.obj")).unwrap();
