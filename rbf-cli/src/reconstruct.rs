@@ -23,9 +23,9 @@ onto the plane of such a neighbourhood, and each normal's sign is checked by the
 number of the other points (at probes inside and outside along it; where the two together see
 a negative field, on a closed scan, the whole part around it points in, as a foot reached the
 wrong way through where it touches the body, and it turns), then voted on by coarse fits to
-them, and the patches are cut and judged again (up to three rounds); a lone normal
-against neighbours that agree is turned to them. Normals more than 60° from their neighbours'
-are left out. Each inside point of a normal constraint goes only as deep as it stays nearest
+them (in the first round only), and the patches are cut and judged again (up to three
+rounds); a lone normal against neighbours that agree is turned to them. Normals more than 60°
+from their neighbours' are left out. Each inside point of a normal constraint goes only as deep as it stays nearest
 its own point, so that thin walls are not pierced. A clean scan is then
 followed closely: a subset of its points chosen greedily carries normal constraints until the
 surface passes within the tolerance of every point (three times the measured noise, at least
