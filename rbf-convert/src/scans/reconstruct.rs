@@ -676,8 +676,8 @@ const SIGN_ROUNDS: usize = 3;
 /// it back. On a simulated boot scan at 0.5 % noise, the votes of the second and third rounds
 /// flipped 90 and 81 normals, 22 and 24 of them to the right side, and the patches after them
 /// turned 89 of the first 90 back; over 17 corpus meshes at 0.5 % noise, votes in the first
-/// round only left as many wrong normals or fewer on all but the fish (94 → 105) and took
-/// 2.5–4.5 s off each scan.
+/// round only left as many wrong normals or fewer on all but the fish (94 → 105) and took up
+/// to 4.5 s off a scan (the boot; nothing where the rounds stop after the first anyway).
 const CONSENSUS_PASSES: usize = 3;
 
 /// Rounds of outside constraints, at most. Each adds every probe where f strayed (up to
