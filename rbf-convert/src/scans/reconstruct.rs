@@ -318,8 +318,20 @@ pub fn reconstruct(
     let spread_near = Neighbours::with_tree(&spread_tree, &spread_points, 8);
     let mut reversed_by_winding = 0;
     let mut refuted = 0;
-    reversed_by_winding +=
-        super::patches::flip_patches(&spread_points, &mut spread_normals, &spread_near, longest);
+    let cuts: &[f64] = if noise > SMOOTH_ABOVE {
+        &[super::patches::CUT]
+    } else {
+        &[super::patches::CUT, super::patches::FINE_CUT]
+    };
+    for &cut in cuts {
+        reversed_by_winding += super::patches::flip_patches(
+            &spread_points,
+            &mut spread_normals,
+            &spread_near,
+            longest,
+            cut,
+        );
+    }
     if noise > SMOOTH_ABOVE {
         let juries = super::consensus::Juries::new(&spread_points);
         for round in 0..SIGN_ROUNDS {
@@ -355,6 +367,7 @@ pub fn reconstruct(
                 &mut spread_normals,
                 &spread_near,
                 longest,
+                super::patches::CUT,
             );
             reversed_by_winding += now;
             if now == 0 {
