@@ -16,8 +16,9 @@ Outliers are dropped (a mean distance to the 20 nearest points more than 2.5 dev
 the cloud's), normals estimated from local planes where the cloud has none (16 neighbours) and
 every normal oriented consistently and outward (a minimum spanning tree of the neighbour graph;
 given normals are checked the same way and flipped ones fixed); then patches of them, cut where
-neighbouring normals turn by more than 35°, are reversed as a whole where the winding number of
-all the other points says they point inward. A noisy scan is smoothed first:
+neighbouring normals turn by more than 35° (on a clean scan, again at 26°), are reversed as a
+whole where the winding number of all the other points says they point inward at their own
+probes. A noisy scan is smoothed first:
 its noise is measured on neighbourhoods grown until they reach four times it, each point moves
 onto the plane of such a neighbourhood, and each normal's sign is checked by the winding
 number of the other points (at probes inside and outside along it; where the two together see
