@@ -68,6 +68,35 @@ pub(crate) fn flip_patches(
         return 0;
     };
     let agreement = agreement(points, normals, near, &labels, count, &judged, &probes);
+    let signs = patch_signs(&agreement, count, fixed);
+    let mut sign_of_point: Vec<f64> = labels.iter().map(|&l| signs[l]).collect();
+    // Outward as a whole: Σ (p − c)·n > 0.
+    let n = points.len() as f64;
+    let centre: [f64; 3] = core::array::from_fn(|d| points.iter().map(|p| p[d]).sum::<f64>() / n);
+    let flux: f64 = points
+        .iter()
+        .zip(normals.iter())
+        .zip(&sign_of_point)
+        .map(|((p, m), s)| s * (0..3).map(|d| (p[d] - centre[d]) * m[d]).sum::<f64>())
+        .sum();
+    if flux < 0.0 {
+        sign_of_point.iter_mut().for_each(|s| *s = -*s);
+    }
+    let mut flipped = 0;
+    for (m, s) in normals.iter_mut().zip(sign_of_point) {
+        if s < 0.0 {
+            *m = m.map(|c| -c);
+            flipped += 1;
+        }
+    }
+    flipped
+}
+
+/// The sign of each of `count` patches (±1) from their agreement matrix (row-major, see
+/// [`agreement`]): from all +1, the patch whose flip gains the consistency most is flipped,
+/// one at a time while any gains, but only patches whose own row gains too, and never the
+/// patch `fixed`.
+fn patch_signs(agreement: &[f64], count: usize, fixed: usize) -> Vec<f64> {
     // Symmetric: flipping P changes the terms of P's row and of P's column alike.
     let mut signs = vec![1.0_f64; count];
     let mut pull: Vec<f64> = (0..count)
@@ -106,27 +135,7 @@ pub(crate) fn flip_patches(
             }
         }
     }
-    let mut sign_of_point: Vec<f64> = labels.iter().map(|&l| signs[l]).collect();
-    // Outward as a whole: Σ (p − c)·n > 0.
-    let n = points.len() as f64;
-    let centre: [f64; 3] = core::array::from_fn(|d| points.iter().map(|p| p[d]).sum::<f64>() / n);
-    let flux: f64 = points
-        .iter()
-        .zip(normals.iter())
-        .zip(&sign_of_point)
-        .map(|((p, m), s)| s * (0..3).map(|d| (p[d] - centre[d]) * m[d]).sum::<f64>())
-        .sum();
-    if flux < 0.0 {
-        sign_of_point.iter_mut().for_each(|s| *s = -*s);
-    }
-    let mut flipped = 0;
-    for (m, s) in normals.iter_mut().zip(sign_of_point) {
-        if s < 0.0 {
-            *m = m.map(|c| -c);
-            flipped += 1;
-        }
-    }
-    flipped
+    signs
 }
 
 /// The patch of each point and the number of patches: the pieces of the neighbour graph
@@ -223,9 +232,30 @@ fn agreement(
 
 #[cfg(test)]
 mod tests {
-    use super::{CUT, flip_patches};
+    use super::{CUT, flip_patches, patch_signs};
     use crate::scans::dipoles::flip_against_winding;
     use crate::scans::dipoles::tests::torus;
+
+    /// Patch 1's points see the others' field say they point in (its row), and its dipoles
+    /// disagree at theirs (its column): it turns. Patch 2 has no probes of its own (an empty
+    /// row), only a column against it, larger than the gain would need: it keeps its sign.
+    /// Patch 3 gathers the small patches and never turns.
+    #[test]
+    fn a_patch_turns_only_where_its_own_probes_say_so() {
+        let count = 4;
+        let mut agreement = vec![0.0; count * count];
+        let mut set = |p: usize, q: usize, v: f64| agreement[p * count + q] = v;
+        set(0, 1, -5.0);
+        set(1, 0, -5.0);
+        set(0, 2, -3.0);
+        set(1, 2, -1.0);
+        set(3, 0, 2.0);
+        set(0, 3, 2.0);
+        assert_eq!(patch_signs(&agreement, count, 3), [1.0, -1.0, 1.0, 1.0]);
+        // Given a row of its own that agrees, patch 2 turns by the same matrix.
+        agreement[2 * count] = -0.5;
+        assert_eq!(patch_signs(&agreement, count, 3), [1.0, -1.0, -1.0, 1.0]);
+    }
 
     /// A third of a torus reversed, as propagation leaves a region behind one wrong edge: point
     /// by point its normals agree with their own side's field, and only those whose probes see
@@ -249,7 +279,7 @@ mod tests {
             .collect();
 
         let mut by_points = reversed.clone();
-        let turned = flip_against_winding(&points, &mut by_points, &near, 2.8, CUT);
+        let turned = flip_against_winding(&points, &mut by_points, &near, 2.8);
         assert!(turned < wrong, "point by point: {turned} of {wrong}");
         assert_ne!(by_points, truth);
 
