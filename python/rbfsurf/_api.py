@@ -218,7 +218,7 @@ def reconstruct(
     *,
     tolerance: Optional[float] = None,
     smoothing: float = 1e-4,
-    max_centres: int = 5000,
+    max_centres: int = 8000,
     keep_outliers: bool = False,
     resolution: Optional[int] = None,
     trim: Optional[float] = None,

@@ -188,7 +188,7 @@ pub(crate) fn _voxelize<'py>(
 /// A scan to a closed surface (see ``rbfsurf.reconstruct``): the mesh, the model and a dict
 /// of what was done.
 #[pyfunction]
-#[pyo3(signature = (points, normals=None, *, tolerance=None, smoothing=1e-4, max_centres=5000, keep_outliers=false, resolution=None, trim=None))]
+#[pyo3(signature = (points, normals=None, *, tolerance=None, smoothing=1e-4, max_centres=8000, keep_outliers=false, resolution=None, trim=None))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 pub(crate) fn _reconstruct<'py>(
     py: Python<'py>,

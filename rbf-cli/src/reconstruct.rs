@@ -68,7 +68,7 @@ pub(crate) struct ReconstructArgs {
     #[arg(long, value_name = "T")]
     tolerance: Option<f64>,
     /// The most points that carry constraints in a greedy fit.
-    #[arg(long, value_name = "N", default_value_t = 5000)]
+    #[arg(long, value_name = "N", default_value_t = 8000)]
     max_centres: usize,
     /// λ of a noisy scan's smoothing fit, for a box whose longest side is 2: larger is
     /// smoother, smaller follows the points more closely.
