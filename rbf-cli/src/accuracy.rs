@@ -11,7 +11,7 @@ use crate::failure::{Failure, USAGE};
 #[derive(Args, Debug, Clone, Copy)]
 pub(crate) struct AccuracyArgs {
     /// Largest error allowed in f, in the model's units [default: 1e-6 of the diagonal of the
-    /// centres' bounding box]. Models of 20 000 centres and more go through a far field when it
+    /// centres' bounding box]. Models of 15 000 centres and more go through a far field when it
     /// is that accurate at 1000 sampled points.
     #[arg(long, value_name = "A", conflicts_with = "exact")]
     accuracy: Option<f64>,

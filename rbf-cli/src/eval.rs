@@ -17,7 +17,7 @@ NumPy .npy array of shape (N, 3) (or (N, 2)), float64 or float32, as numpy.save 
 Output: one line per point, `value` or `value gx gy gz` with --gradient; with -o OUT.npy, an
 array of shape (N,) of values, or (N, 4) (or (N, 3)) of values and gradients.
 f is positive inside, negative outside and zero on the surface.
-Models of 20 000 centres and more are evaluated through a far field (clusters of centres far
+Models of 15 000 centres and more are evaluated through a far field (clusters of centres far
 from a group of points replaced by Chebyshev proxies) when that is within --accuracy, measured
 against direct sums at 1000 sampled points before the rest are evaluated; --exact sums every
 centre directly.

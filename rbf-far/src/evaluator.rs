@@ -7,8 +7,10 @@ use rbf_core::{InterpolantView, LengthMismatch, ScalarField};
 use crate::field::{Calibrated, Charges, FarField, calibrated_with_coarse};
 
 /// Centres below which direct sums are used whatever the number of points (the far field does
-/// not pay there).
-pub const FAR_FIELD_CENTRES: usize = 20_000;
+/// not pay there). Measured polygonizing reconstructed scans (`rbf mesh`, 3·10⁵–5·10⁵
+/// samples, default accuracy): 1.3·10⁴ centres 3.27 s direct, 3.11 s through the far field;
+/// 2·10⁴ centres 6.1 s and 4.7 s.
+pub const FAR_FIELD_CENTRES: usize = 15_000;
 
 /// Points at which the far field's error is measured before it is trusted.
 const SAMPLED_POINTS: usize = 1000;

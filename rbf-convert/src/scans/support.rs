@@ -2,6 +2,7 @@
 
 use rbf_cloud::distances_to_cloud;
 use rbf_core::Model;
+use rbf_far::{Evaluator, default_accuracy};
 use rbf_mesh::{
     MeshError, PolygonizeSettings, Resolution, TriMesh, polygonize_continuation, surface_seeds,
 };
@@ -128,8 +129,11 @@ pub fn scan_mesh(
         resolution: Resolution::Cells(resolution),
         ..Default::default()
     };
-    let (mesh, _) =
-        polygonize_continuation(&model.interpolant.view(), &surface_seeds(model), &settings)?;
+    let view = model.interpolant.view();
+    let seeds = surface_seeds(model);
+    // A smoothing fit of 10⁴ normal constraints has 2·10⁴ centres: the far field pays there.
+    let f = Evaluator::new(view, &seeds, default_accuracy(view.centres()));
+    let (mesh, _) = polygonize_continuation(&f, &seeds, &settings)?;
     Ok(supported_pieces(&mesh, points, report.support_reach)?)
 }
 
