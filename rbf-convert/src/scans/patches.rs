@@ -107,18 +107,20 @@ fn patch_signs(agreement: &[f64], count: usize, fixed: usize) -> Vec<f64> {
                 .sum()
         })
         .collect();
-    // What P's own points say: the others' field at P's probes (its row), gained by turning P.
-    let own_gain = |signs: &[f64], p: usize| -> f64 {
-        -signs[p]
-            * (0..count)
+    // What P's own points say: the others' field at P's probes (its row, Σ s(Q) A(P, Q)),
+    // which turning P gains when it is against P's sign.
+    let mut row: Vec<f64> = (0..count)
+        .map(|p| {
+            (0..count)
                 .filter(|&q| q != p)
-                .map(|q| signs[q] * agreement[p * count + q])
-                .sum::<f64>()
-    };
+                .map(|q| agreement[p * count + q])
+                .sum()
+        })
+        .collect();
     // Each flip gains 2 |pull|; at most one flip per patch and round, and few rounds.
     for _ in 0..4 * count {
         let Some((worst, gain)) = (0..count)
-            .filter(|&p| p != fixed && own_gain(&signs, p) > 0.0)
+            .filter(|&p| p != fixed && -signs[p] * row[p] > 0.0)
             .map(|p| (p, -signs[p] * pull[p]))
             .max_by(|a, b| a.1.total_cmp(&b.1))
         else {
@@ -132,6 +134,7 @@ fn patch_signs(agreement: &[f64], count: usize, fixed: usize) -> Vec<f64> {
             if q != worst {
                 let b = agreement[worst * count + q] + agreement[q * count + worst];
                 pull[q] += 2.0 * signs[worst] * b;
+                row[q] += 2.0 * signs[worst] * agreement[q * count + worst];
             }
         }
     }
