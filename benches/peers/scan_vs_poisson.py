@@ -8,7 +8,9 @@ Each scan is made from a closed mesh of ../shared/data/meshes, seeded and repeat
   some regions up to four times as dense as others);
 - holes: the points within 4 % of the diagonal of three random surface points are removed;
 - Gaussian noise of σ = NOISE × the diagonal along every axis;
-- outliers: 0.2 % more points, uniform in the box grown by a tenth.
+- outliers: 0.2 % more points, uniform in the box grown by a tenth;
+- with `--sparse S`, only the share S of the points on one half (beyond the middle of the
+  longest side) is kept, as if that half were scanned from farther away.
 
 No normals are given to either tool. Open3D (as its users run it): statistical outliers (20
 neighbours, 2 deviations), normals from 20 neighbours, oriented by its tangent-plane MST,
@@ -25,7 +27,7 @@ wall time and peak memory of the whole tool (reading and writing included).
     python3 -m venv /tmp/scan-venv && /tmp/scan-venv/bin/pip install numpy scipy trimesh networkx open3d pymeshlab
     cargo build --release -p rbf-cli
     /tmp/scan-venv/bin/python benches/peers/scan_vs_poisson.py [--points 100000]
-        [--noise 0 0.002 0.005 0.01] [--tools rbf open3d meshlab] [MESH ...]
+        [--noise 0 0.002 0.005 0.01] [--sparse 0.08] [--tools rbf open3d meshlab] [MESH ...]
 
 Prints one JSON line per scan and tool, then a Markdown table.
 """
@@ -50,8 +52,11 @@ rbf = os.environ.get("RBF", os.path.join(root, "target", "release", "rbf"))
 DEFAULT_MESHES = ["bunny_small", "spot", "cow", "knot", "torus", "koala"]
 
 
-def simulate(mesh, n, noise, seed):
-    """(points, clean points, true normals of the clean points, mask of real points)."""
+def simulate(mesh, n, noise, seed, sparse=None):
+    """(points, clean points, true normals of the clean points, mask of real points).
+
+    With `sparse`, only that share of the points beyond the middle of the longest side is kept
+    (one half scanned from farther away): n counts the points before."""
     rng = np.random.default_rng(seed)
     diag = float(np.linalg.norm(mesh.extents))
     lo = mesh.bounds[0]
@@ -69,6 +74,11 @@ def simulate(mesh, n, noise, seed):
         pts = np.vstack([pts, p[keep]])
         normals = np.vstack([normals, mesh.face_normals[faces[keep]]])
     clean, normals = pts[:n], normals[:n]
+    if sparse is not None:
+        axis = int(np.argmax(mesh.extents))
+        middle = 0.5 * (mesh.bounds[0][axis] + mesh.bounds[1][axis])
+        keep = (clean[:, axis] < middle) | (rng.uniform(size=n) < sparse)
+        clean, normals, n = clean[keep], normals[keep], int(keep.sum())
     noisy = clean + rng.normal(size=clean.shape) * noise * diag
     m = max(1, int(0.002 * n))
     grow = 0.1 * mesh.extents
@@ -201,6 +211,8 @@ def main():
     ap.add_argument("--points", type=int, default=100_000)
     ap.add_argument("--noise", type=float, nargs="+", default=[0.0, 0.002, 0.005])
     ap.add_argument("--depth", type=int, default=None, help="Poisson depth (9, 10 from 5e5)")
+    ap.add_argument("--sparse", type=float, default=None,
+                    help="keep only this share of the points on one half of each object")
     ap.add_argument("--tools", nargs="+", default=["rbf", "open3d", "meshlab"],
                     help="which tools to run (rbf, open3d, meshlab)")
     args = ap.parse_args()
@@ -217,7 +229,8 @@ def main():
         truth_samples, _ = trimesh.sample.sample_surface(truth, 100_000, seed=3)
         for noise in args.noise:
             out_dir = tempfile.mkdtemp(prefix=f"scan-{name}-")
-            cloud, clean, normals, real, order = simulate(truth, args.points, noise, seed=11)
+            cloud, clean, normals, real, order = simulate(truth, args.points, noise, seed=11,
+                                                          sparse=args.sparse)
             cloud_path = os.path.join(out_dir, "cloud.npy")
             np.save(cloud_path, cloud)
             scan = dict(mesh=name, points=len(cloud), noise_pct=100 * noise)

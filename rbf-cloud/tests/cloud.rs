@@ -209,6 +209,35 @@ fn far_outliers_are_flagged_and_the_surface_is_kept() {
 }
 
 #[test]
+fn a_sparsely_scanned_half_is_not_taken_for_outliers() {
+    // One hemisphere scanned at a twentieth of the other's density, and 20 outliers around.
+    let (dense, _) = sphere(20_000, [0.0; 3], 1.0);
+    let mut rng = Rng(5);
+    let mut points: Vec<[f64; 3]> = dense
+        .into_iter()
+        .filter(|p| p[2] < 0.0 || rng.next() < 1.0 / 20.0)
+        .collect();
+    let surface = points.len();
+    let sparse = points.iter().filter(|p| p[2] >= 0.0).count();
+    for _ in 0..20 {
+        let d = [rng.normal(), rng.normal(), rng.normal()];
+        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let s = 1.5 + 2.0 * rng.next();
+        points.push([s * d[0] / r, s * d[1] / r, s * d[2] / r]);
+    }
+    let flags = statistical_outliers(&Neighbours::new(&points, 20), 2.5);
+    let caught = flags[surface..].iter().filter(|&&f| f).count();
+    let lost = (0..surface)
+        .filter(|&i| flags[i] && points[i][2] >= 0.0)
+        .count();
+    assert!(caught >= 18, "{caught} of 20 outliers flagged");
+    assert!(
+        lost * 50 <= sparse,
+        "{lost} of the sparse half's {sparse} points flagged"
+    );
+}
+
+#[test]
 fn degenerate_clouds_do_not_panic() {
     for points in [
         vec![],
