@@ -225,14 +225,16 @@ def reconstruct(
     return_report: bool = False,
 ) -> Union[Tuple[np.ndarray, np.ndarray, Model], Tuple[np.ndarray, np.ndarray, Model, dict]]:
     """A closed surface from a scan, as ``rbf reconstruct`` makes it: ``(vertices, faces,
-    model)``, and with ``return_report`` a dict of what was done (outliers dropped, normals
+    model)``, and with ``return_report`` a dict of what was done (repeated points
+    (``duplicates``) and outliers dropped, normals
     estimated and flipped (``reversed_by_winding``: by the winding number of the others;
     ``refuted``: reversed by fits; ``disagreeing``: left out), noise,
     centres, ``lambda`` (0 for a greedy fit), outside constraints added, bubbles dropped,
     watertight, genus, components).
 
-    ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes). Outliers
-    are dropped unless ``keep_outliers``; every normal is oriented consistently and outward.
+    ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes). A point
+    given again at the same position is dropped; outliers (sparser than the cloud and than
+    their neighbours) are dropped unless ``keep_outliers``; every normal is oriented consistently and outward.
     A clean scan is followed closely: greedily chosen points carry normal constraints until
     the surface passes within ``tolerance`` (a fraction of the box's longest side; default
     three times the measured noise, at least 2.5e-3) of every point, using at most

@@ -264,6 +264,7 @@ pub(crate) fn _reconstruct<'py>(
         .map_err(bad)?;
     let d = PyDict::new(py);
     d.set_item("points", report.points)?;
+    d.set_item("duplicates", report.duplicates)?;
     d.set_item("outliers", report.outliers)?;
     d.set_item("working", report.working)?;
     d.set_item("normals_estimated", report.normals_estimated)?;

@@ -13,7 +13,8 @@ use crate::failure::{BAD_INPUT, Failure, USAGE};
 
 pub(crate) const HELP: &str = "\
 Outliers are dropped (a mean distance to the 20 nearest points more than 2.5 deviations above
-the cloud's), normals estimated from local planes where the cloud has none (16 neighbours) and
+the cloud's, and 1.5 times its neighbours' or 8 times the cloud's median: a region scanned more
+sparsely than the rest is kept), normals estimated from local planes where the cloud has none (16 neighbours) and
 every normal oriented consistently and outward (a minimum spanning tree of the neighbour graph;
 given normals are checked the same way and flipped ones fixed); then patches of them, cut where
 neighbouring normals turn by more than 35° (on a clean scan, again at 26°), are reversed as a
@@ -160,10 +161,15 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.beyond_tolerance
         );
         eprintln!(
-            "{} points read, {} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {}{} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
+            if report.duplicates > 0 {
+                format!("{} repeated and ", report.duplicates)
+            } else {
+                String::new()
+            },
             report.outliers,
-            if report.working < report.points - report.outliers {
+            if report.working < report.points - report.duplicates - report.outliers {
                 format!(", a random {} of them worked on", report.working)
             } else {
                 String::new()

@@ -1,7 +1,8 @@
 //! # rbf-cloud
 //!
 //! The geometry of point clouds that surface reconstruction needs before any fitting: each
-//! point's nearest neighbours ([`Neighbours`], one k-d tree, kiddo's), statistical outliers
+//! point's nearest neighbours ([`Neighbours`], one k-d tree, kiddo's), repeated points
+//! ([`distinct_points`]), statistical outliers
 //! ([`statistical_outliers`]), normals from local planes ([`estimate_normals`]) and their
 //! consistent orientation over a minimum spanning tree of the neighbour graph
 //! ([`orient_normals`], Hoppe et al. 1992 with König & Gumhold 2009's edge weights), how far
@@ -29,6 +30,7 @@
 //! ```
 
 mod distance;
+mod duplicates;
 mod neighbours;
 mod normals;
 mod offsets;
@@ -37,6 +39,7 @@ mod outliers;
 mod tree;
 
 pub use distance::distances_to_cloud;
+pub use duplicates::distinct_points;
 pub use neighbours::Neighbours;
 pub use normals::{estimate_normals, normal_of};
 pub use offsets::{clear_offsets, clear_offsets_with_tree};

@@ -9,7 +9,9 @@ use rbf_mesh::MeshError;
 #[non_exhaustive]
 pub enum ConvertError {
     /// Too few points to reconstruct a surface from.
-    #[error("{points} point(s) after dropping outliers: a surface needs at least {needed}")]
+    #[error(
+        "{points} point(s) after dropping repeated points and outliers: a surface needs at least {needed}"
+    )]
     TooFewPoints {
         /// Points left.
         points: usize,

@@ -19,8 +19,8 @@
 //! genus 0, one piece.
 
 use rbf_cloud::{
-    Neighbours, PointTree, clear_offsets_with_tree, estimate_normals, normal_of, orient_normals,
-    statistical_outliers,
+    Neighbours, PointTree, clear_offsets_with_tree, distinct_points, estimate_normals, normal_of,
+    orient_normals, statistical_outliers,
 };
 use rbf_core::{Constraint, FitSettings, Model, NormalOffset};
 
@@ -104,6 +104,8 @@ impl Default for ReconstructSettings {
 pub struct ReconstructReport {
     /// Points given.
     pub points: usize,
+    /// Points given again at a position given before, dropped.
+    pub duplicates: usize,
     /// Points dropped as outliers.
     pub outliers: usize,
     /// Points the normals, orientation and fit worked on: the points kept, or a random subset
@@ -189,13 +191,25 @@ pub fn reconstruct(
             needed: FEWEST_POINTS,
         });
     }
+    // A point given twice is once too many: it would be its own nearest neighbour.
+    let distinct = distinct_points(points);
+    let duplicates = points.len() - distinct.len();
+    if distinct.len() == 1 {
+        return Err(ConvertError::Flat { shape: "point" });
+    }
     // Outliers first: they would bend normals and the surface alike.
     let mut keep: Vec<usize> = match settings.outlier_ratio {
         Some(ratio) => {
-            let flags = statistical_outliers(&Neighbours::new(points, 20), ratio);
-            (0..points.len()).filter(|&i| !flags[i]).collect()
+            let unique: Vec<[f64; 3]> = distinct.iter().map(|&i| points[i]).collect();
+            let flags = statistical_outliers(&Neighbours::new(&unique, 20), ratio);
+            distinct
+                .iter()
+                .zip(flags)
+                .filter(|&(_, outlier)| !outlier)
+                .map(|(&i, _)| i)
+                .collect()
         }
-        None => (0..points.len()).collect(),
+        None => distinct.clone(),
     };
     if keep.len() < FEWEST_POINTS {
         return Err(ConvertError::TooFewPoints {
@@ -203,7 +217,7 @@ pub fn reconstruct(
             needed: FEWEST_POINTS,
         });
     }
-    let outliers = points.len() - keep.len();
+    let outliers = distinct.len() - keep.len();
     let mut kept: Vec<[f64; 3]> = keep.iter().map(|&i| points[i]).collect();
     if let Some(shape) = flatness(&kept) {
         return Err(ConvertError::Flat { shape });
@@ -518,6 +532,7 @@ pub fn reconstruct(
     }
     let summary = ReconstructReport {
         points: points.len(),
+        duplicates,
         outliers,
         working: kept.len(),
         normals_estimated: estimated,
@@ -981,14 +996,21 @@ fn normalized(v: [f64; 3]) -> [f64; 3] {
 }
 
 /// The resolution to polygonize a reconstruction at: cubes about one median spacing of the
-/// points wide (thin parts keep their topology), 96 to 384 across the box's longest side.
+/// (distinct) points wide (thin parts keep their topology), 96 to 384 across the box's longest side.
 ///
 /// ```
 /// let grid: Vec<[f64; 3]> = (0..1000).map(|i| [(i % 10) as f64, ((i / 10) % 10) as f64, (i / 100) as f64 * 20.0]).collect();
 /// assert_eq!(rbf_convert::mesh_resolution(&grid), 180);
+/// // Points given twice are counted once.
+/// assert_eq!(rbf_convert::mesh_resolution(&[grid.clone(), grid].concat()), 180);
 /// ```
 pub fn mesh_resolution(points: &[[f64; 3]]) -> usize {
-    let near = Neighbours::new(points, 1);
+    // A repeated point's nearest is itself, at 0.
+    let distinct: Vec<[f64; 3]> = distinct_points(points)
+        .into_iter()
+        .map(|i| points[i])
+        .collect();
+    let near = Neighbours::new(&distinct, 1);
     let mut spacing: Vec<f64> = (0..near.len()).map(|i| near.distances_of(i)[0]).collect();
     if spacing.is_empty() {
         return 128;
