@@ -139,6 +139,17 @@ def test_reconstruct_a_scan_without_normals():
     assert report["outside_added"] >= 0 and report["bubbles_dropped"] >= 0
 
 
+def test_reconstruct_drops_repeated_points_and_says_so():
+    points = torus_lattice(3000)
+    twice = np.vstack([points, points[::-1]])
+    _, _, model, report = rbfsurf.reconstruct(twice, resolution=64, return_report=True)
+    _, _, once, report_once = rbfsurf.reconstruct(points, resolution=64, return_report=True)
+    assert (report["points"], report["duplicates"], report_once["duplicates"]) == (6000, 3000, 0)
+    assert report["centres"] == report_once["centres"]
+    x = np.random.default_rng(1).uniform(-1.5, 1.5, (50, 3))
+    assert np.abs(model(x) - once(x)).max() < 1e-9 * max(1.0, np.abs(once(x)).max())
+
+
 def test_reconstruct_a_scan_with_holes_and_uneven_density():
     n = 9000
     points = torus_lattice(n)
