@@ -320,6 +320,42 @@ fn a_smoothing_fit_passes_through_the_middle_of_the_noise() {
     );
 }
 
+/// A scan whose one half is sparse and noisy: its smoothing fit has about 2·10⁴ centres and
+/// goes through the far field, which must be as accurate between the centres, where the
+/// polygonizer samples, as at them.
+#[test]
+fn a_sparse_noisy_scan_meshes_through_the_far_field_as_by_direct_sums() {
+    let (all, _) = torus(60_000);
+    let sparse: Vec<[f64; 3]> = all
+        .iter()
+        .enumerate()
+        .filter(|(i, p)| p[0] < 0.0 || i % 12 == 0)
+        .map(|(_, p)| *p)
+        .collect();
+    let sigma = 0.005 * (2.8f64 * 2.8 * 2.0 + 0.8 * 0.8).sqrt();
+    let points = with_noise(&sparse, sigma);
+    let (model, report) = reconstruct(&points, None, &ReconstructSettings::default()).unwrap();
+    assert!(report.lambda > 0.0, "{report:?}");
+    let (far, _) = rbf_convert::scan_mesh(&model, &report, &points, 96).unwrap();
+    let view = model.interpolant.view();
+    let settings = PolygonizeSettings {
+        resolution: Resolution::Cells(96),
+        ..Default::default()
+    };
+    let (direct, _) = polygonize_continuation(&view, &surface_seeds(&model), &settings).unwrap();
+    let apart = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+        rbf_cloud::distances_to_cloud(a, b)
+            .into_iter()
+            .fold(0.0, f64::max)
+    };
+    let (a, b) = (far.positions(), direct.positions());
+    let moved = apart(a, b).max(apart(b, a));
+    assert!(
+        moved < 1e-4 * 7.2 / 96.0,
+        "a vertex {moved} from the direct sums' mesh"
+    );
+}
+
 /// A strip whose faces are three point spacings apart, thinner than the normal constraints'
 /// default offset (1 % of its longest side, 3.2): each inside point goes only as deep as it
 /// stays nearest its own face, so it does not land outside the other one, and the strip comes

@@ -132,7 +132,11 @@ pub fn scan_mesh(
     let view = model.interpolant.view();
     let seeds = surface_seeds(model);
     // A smoothing fit of 10⁴ normal constraints has 2·10⁴ centres: the far field pays there.
-    let f = Evaluator::new(view, &seeds, default_accuracy(view.centres()));
+    // Its accuracy is measured at the centres, half of them off the surface (the normal
+    // constraints' offset points): measured at the surface points alone, it was chosen too
+    // low and missed between them (a noisy bunny scan's mesh lay 0.5 % of the diagonal inside
+    // its surface, F-score 0.54 against 0.98 by direct sums).
+    let f = Evaluator::new(view, view.centres(), default_accuracy(view.centres()));
     let (mesh, _) = polygonize_continuation(&f, &seeds, &settings)?;
     Ok(supported_pieces(&mesh, points, report.support_reach)?)
 }
