@@ -26,6 +26,7 @@ use rbf_core::{Constraint, FitSettings, Model, NormalOffset};
 
 use crate::ConvertError;
 use crate::poisson::bounds;
+use rayon::prelude::*;
 
 /// The fewest points a surface is reconstructed from.
 const FEWEST_POINTS: usize = 10;
@@ -253,7 +254,8 @@ pub fn reconstruct(
         other => other,
     };
     // Noise above what a clean scan's curvature shows: each point moves onto the plane of its
-    // neighbourhood (its centroid and normal), which averages the noise across the plane away;
+    // neighbourhood (its centroid and normal), which averages the noise across the plane away
+    // (onto a quadric where the neighbourhood spreads wide, in a sparsely scanned region);
     // estimated normals are estimated again from the smoothed points, and the orientation
     // follows their edges (noisy edges mislead its mirrored-normal predictions).
     let (smoothed, oriented, near) = if noise > SMOOTH_ABOVE {
@@ -263,7 +265,12 @@ pub fn reconstruct(
             None => (near.clone(), unoriented),
         };
         let wide_k = wide.k();
-        let smoothed = project_onto_local_planes(&kept, &planes, &wide);
+        let smoothed = project_onto_local_surfaces(
+            &kept,
+            &planes,
+            &wide,
+            CURVED_REACH * 4.0 * noise * longest,
+        );
         let tree = PointTree::new(&smoothed);
         let near = Neighbours::with_tree(&tree, &smoothed, k);
         let normals = if estimated {
@@ -850,6 +857,15 @@ fn measure_noise(
     (noise, wide)
 }
 
+/// A noisy point whose neighbourhood reaches beyond this many times the reach the
+/// neighbourhoods were grown to (four times the noise, at the median) is smoothed onto a
+/// quadric instead of a plane ([`project_onto_local_surfaces`]). On simulated scans whose one
+/// half kept 8 % of its points, at 0.5 % noise: F-score 0.832 → 0.975 (bunny), 0.773 → 0.977
+/// (spot), 0.740 → 0.886 (koala), 0.662 → 0.825 (cow). On every point, the quadric also cost
+/// the six benchmark meshes' noisy scans (bunny at 0.5 %: 0.9948 → 0.9914, cow 0.9479 →
+/// 0.9385); beyond twice the reach, their F-scores moved by at most 0.002.
+const CURVED_REACH: f64 = 2.0;
+
 /// Points the noise is measured at (a sample of the scan).
 const NOISE_SAMPLE: usize = 4000;
 
@@ -907,30 +923,83 @@ fn agrees_with_neighbours(normals: &[[f64; 3]], near: &Neighbours, i: usize) -> 
     dot(n, mean) > 0.5 * dot(mean, mean).sqrt()
 }
 
-/// Each point moved onto the plane through its neighbourhood's centroid with its normal.
-fn project_onto_local_planes(
+/// Each point moved along its normal onto the surface of its neighbourhood: the plane through
+/// its centroid, which averages the noise across it away, or where the neighbourhood reaches
+/// farther than `curved_beyond` (a region scanned more sparsely than the rest, whose fixed
+/// count of neighbours spreads wider), the quadric height function fitted to it by least
+/// squares in the point's tangent frame, which follows the surface's curvature where a plane
+/// through so wide a neighbourhood would cut inside it (by r²/2R at a radius r on a curvature
+/// radius R).
+fn project_onto_local_surfaces(
     points: &[[f64; 3]],
     normals: &[[f64; 3]],
     near: &Neighbours,
+    curved_beyond: f64,
 ) -> Vec<[f64; 3]> {
     (0..points.len())
+        .into_par_iter()
         .map(|i| {
-            let others = near.of(i);
-            let count = (others.len() + 1) as f64;
-            let mut c = points[i];
-            for &j in others {
-                (0..3).for_each(|d| c[d] += points[j as usize][d]);
-            }
-            let c = [c[0] / count, c[1] / count, c[2] / count];
             let (p, n) = (points[i], normals[i]);
-            let height = (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1] + (p[2] - c[2]) * n[2];
-            [
-                p[0] - height * n[0],
-                p[1] - height * n[1],
-                p[2] - height * n[2],
-            ]
+            let others = near.of(i);
+            let reach = near.distances_of(i).last().copied().unwrap_or(0.0);
+            let height = if reach > curved_beyond {
+                quadric_height(points, p, n, others)
+            } else {
+                None
+            };
+            let height = height.unwrap_or_else(|| {
+                let count = (others.len() + 1) as f64;
+                let mut c = p;
+                for &j in others {
+                    (0..3).for_each(|d| c[d] += points[j as usize][d]);
+                }
+                let c = c.map(|v| v / count);
+                -((p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1] + (p[2] - c[2]) * n[2])
+            });
+            core::array::from_fn(|d| p[d] + height * n[d])
         })
         .collect()
+}
+
+/// The height above `p` along `n` of the quadric h(u, v) fitted by least squares to `p` and
+/// the points `others` in the tangent frame of `n`; `None` for fewer than eight points, no
+/// normal, or a singular fit.
+fn quadric_height(points: &[[f64; 3]], p: [f64; 3], n: [f64; 3], others: &[u32]) -> Option<f64> {
+    if others.len() < 8 || n.iter().all(|&c| c == 0.0) {
+        return None;
+    }
+    let (t1, t2) = tangent_frame(n);
+    let offsets = || {
+        std::iter::once(p)
+            .chain(others.iter().map(|&j| points[j as usize]))
+            .map(|q| [q[0] - p[0], q[1] - p[1], q[2] - p[2]])
+    };
+    // u and v scaled to about 1, so that the normal equations stay well conditioned.
+    let scale = offsets().map(|d| dot(d, d)).fold(0.0, f64::max).sqrt();
+    if !(scale > 0.0) {
+        return None;
+    }
+    let mut ata = nalgebra::Matrix6::<f64>::zeros();
+    let mut atb = nalgebra::Vector6::<f64>::zeros();
+    for d in offsets() {
+        let (u, v) = (dot(d, t1) / scale, dot(d, t2) / scale);
+        let row = nalgebra::Vector6::new(1.0, u, v, u * u, u * v, v * v);
+        ata += row * row.transpose();
+        atb += row * dot(d, n);
+    }
+    let height = ata.cholesky()?.solve(&atb)[0];
+    height.is_finite().then_some(height)
+}
+
+/// Two unit vectors that make a right-handed orthonormal frame with the unit normal `n`.
+fn tangent_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let helper = if n[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let t1 = normalized(cross(n, helper));
+    (t1, cross(n, t1))
 }
 
 /// The noise of a scan: the median over the given neighbourhoods (a point's index, its normal,
@@ -947,14 +1016,7 @@ fn median_quadric_residual<'a>(
             if others.len() < 8 || n.iter().all(|&c| c == 0.0) {
                 return None;
             }
-            // A tangent frame (t1, t2, n).
-            let helper = if n[0].abs() < 0.9 {
-                [1.0, 0.0, 0.0]
-            } else {
-                [0.0, 1.0, 0.0]
-            };
-            let t1 = normalized(cross(n, helper));
-            let t2 = cross(n, t1);
+            let (t1, t2) = tangent_frame(n);
             let rows: Vec<[f64; 3]> = std::iter::once(p)
                 .chain(others.iter().map(|&j| points[j as usize]))
                 .map(|q| {
