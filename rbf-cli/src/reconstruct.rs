@@ -12,16 +12,17 @@ use crate::common::{read_text, spinner, write_atomically};
 use crate::failure::{BAD_INPUT, Failure, USAGE};
 
 pub(crate) const HELP: &str = "\
-Outliers are dropped (a mean distance to the 20 nearest points more than 2.5 deviations above
-the cloud's, and 1.5 times its neighbours' or 8 times the cloud's median: a region scanned more
-sparsely than the rest is kept), normals estimated from local planes where the cloud has none (16 neighbours) and
+Points given twice are dropped, then outliers (a mean distance to the 20 nearest points more
+than 2.5 deviations above the cloud's, and 1.5 times its neighbours' or 8 times the cloud's
+median: a region scanned more sparsely than the rest is kept), normals estimated from local planes where the cloud has none (16 neighbours) and
 every normal oriented consistently and outward (a minimum spanning tree of the neighbour graph;
 given normals are checked the same way and flipped ones fixed); then patches of them, cut where
 neighbouring normals turn by more than 35° (on a clean scan, again at 26°), are reversed as a
 whole where the winding number of all the other points says they point inward at their own
 probes. A noisy scan is smoothed first:
 its noise is measured on neighbourhoods grown until they reach four times it, each point moves
-onto the plane of such a neighbourhood, and each normal's sign is checked by the winding
+onto the plane of such a neighbourhood (onto a quadric where it spreads beyond twice that
+reach, in a sparsely scanned region), and each normal's sign is checked by the winding
 number of the other points (at probes inside and outside along it; where the two together see
 a negative field, on a closed scan, the whole part around it points in, as a foot reached the
 wrong way through where it touches the body, and it turns), then voted on by coarse fits to
