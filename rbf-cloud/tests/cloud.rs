@@ -191,16 +191,23 @@ fn flipped_given_normals_are_found_and_fixed() {
     assert_eq!(share_outward(&o.normals, &truth), 1.0);
 }
 
+/// `count` points in random directions, 1.5 to 3.5 from the origin.
+fn outliers_around_the_unit_sphere(rng: &mut Rng, count: usize) -> Vec<[f64; 3]> {
+    (0..count)
+        .map(|_| {
+            let d = [rng.normal(), rng.normal(), rng.normal()];
+            let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let s = 1.5 + 2.0 * rng.next();
+            [s * d[0] / r, s * d[1] / r, s * d[2] / r]
+        })
+        .collect()
+}
+
 #[test]
 fn far_outliers_are_flagged_and_the_surface_is_kept() {
     let (mut points, _) = sphere(5000, [0.0; 3], 1.0);
     let mut rng = Rng(11);
-    for _ in 0..50 {
-        let d = [rng.normal(), rng.normal(), rng.normal()];
-        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        let s = 1.5 + 2.0 * rng.next();
-        points.push([s * d[0] / r, s * d[1] / r, s * d[2] / r]);
-    }
+    points.extend(outliers_around_the_unit_sphere(&mut rng, 50));
     let flags = statistical_outliers(&Neighbours::new(&points, 20), 2.0);
     let caught = flags[5000..].iter().filter(|&&f| f).count();
     let lost = flags[..5000].iter().filter(|&&f| f).count();
@@ -219,12 +226,7 @@ fn a_sparsely_scanned_half_is_not_taken_for_outliers() {
         .collect();
     let surface = points.len();
     let sparse = points.iter().filter(|p| p[2] >= 0.0).count();
-    for _ in 0..20 {
-        let d = [rng.normal(), rng.normal(), rng.normal()];
-        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        let s = 1.5 + 2.0 * rng.next();
-        points.push([s * d[0] / r, s * d[1] / r, s * d[2] / r]);
-    }
+    points.extend(outliers_around_the_unit_sphere(&mut rng, 20));
     let flags = statistical_outliers(&Neighbours::new(&points, 20), 2.5);
     let caught = flags[surface..].iter().filter(|&&f| f).count();
     let lost = (0..surface)

@@ -860,7 +860,7 @@ fn measure_noise(
 /// A noisy point whose neighbourhood reaches beyond this many times the reach the
 /// neighbourhoods were grown to (four times the noise, at the median) is smoothed onto a
 /// quadric instead of a plane ([`project_onto_local_surfaces`]). On simulated scans whose one
-/// half kept 8 % of its points, at 0.5 % noise: F-score 0.832 → 0.975 (bunny), 0.773 → 0.977
+/// half kept 8 % of its points, at 0.5 % noise: F-score 0.832 → 0.979 (bunny), 0.773 → 0.977
 /// (spot), 0.740 → 0.886 (koala), 0.662 → 0.825 (cow). On every point, the quadric also cost
 /// the six benchmark meshes' noisy scans (bunny at 0.5 %: 0.9948 → 0.9914, cow 0.9479 →
 /// 0.9385); beyond twice the reach, their F-scores moved by at most 0.002.
