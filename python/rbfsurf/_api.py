@@ -228,7 +228,8 @@ def reconstruct(
     model)``, and with ``return_report`` a dict of what was done (repeated points
     (``duplicates``) and outliers dropped, normals
     estimated and flipped (``reversed_by_winding``: by the winding number of the others;
-    ``refuted``: reversed by fits; ``disagreeing``: left out), noise,
+    ``refuted``: reversed by fits; ``reversed_by_sight``: by lines of sight;
+    ``disagreeing``: left out), noise,
     centres, ``lambda`` (0 for a greedy fit), outside constraints added, bubbles dropped,
     watertight, genus, components).
 

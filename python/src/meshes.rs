@@ -271,6 +271,7 @@ pub(crate) fn _reconstruct<'py>(
     d.set_item("flipped", report.flipped)?;
     d.set_item("refuted", report.refuted)?;
     d.set_item("reversed_by_winding", report.reversed_by_winding)?;
+    d.set_item("reversed_by_sight", report.reversed_by_sight)?;
     d.set_item("disagreeing", report.disagreeing)?;
     d.set_item("contradicted", report.contradicted)?;
     d.set_item("pieces", report.pieces)?;

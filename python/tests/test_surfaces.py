@@ -137,6 +137,8 @@ def test_reconstruct_a_scan_without_normals():
     assert vertices.shape[1] == 3 and faces.shape[1] == 3 and faces.max() < len(vertices)
     assert model([[1.0, 0.0, 0.0]])[0] > 0 > model([[0.0, 0.0, 0.0]])[0]
     assert report["outside_added"] >= 0 and report["bubbles_dropped"] >= 0
+    # A clean scan is not checked by lines of sight (noisy ones are).
+    assert report["reversed_by_sight"] == 0
 
 
 def test_reconstruct_drops_repeated_points_and_says_so():

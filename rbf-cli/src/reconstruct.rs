@@ -162,7 +162,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.beyond_tolerance
         );
         eprintln!(
-            "{} points read, {}{} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {}{} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} by lines of sight, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             if report.duplicates > 0 {
                 format!("{} repeated and ", report.duplicates)
@@ -183,6 +183,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.flipped,
             report.reversed_by_winding,
             report.refuted,
+            report.reversed_by_sight,
             report.disagreeing,
             report.pieces,
             report.noise,

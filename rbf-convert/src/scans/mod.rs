@@ -1,12 +1,14 @@
 //! Scans to surfaces: a point cloud becomes an implicit surface (`reconstruct.rs`), with its
 //! normals checked by the winding number of the other points, whole patches (`patches.rs`) and
-//! point by point (`dipoles.rs`), and by fits to them (`consensus.rs`), and then a mesh that
+//! point by point (`dipoles.rs`), by fits to them (`consensus.rs`) and by lines of sight
+//! (`sight.rs`), and then a mesh that
 //! keeps to what the scan shows (`support.rs`).
 
 mod consensus;
 mod dipoles;
 mod patches;
 mod reconstruct;
+mod sight;
 mod support;
 
 pub use reconstruct::{ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct};

@@ -13,7 +13,8 @@
 //! whose normals are wrong: a few hundred of 2·10⁴ (measured on a simulated bunny scan at 0.2 %
 //! noise: 114 of the 120 wrong-signed normals became centres, and the surface came out with
 //! genus 21). So a noisy scan is smoothed on neighbourhoods as wide as its noise asks, its
-//! normals are voted on by fits to the other points ([`super::consensus`]), normals at odds
+//! normals are voted on by fits to the other points ([`super::consensus`]) and checked by lines
+//! of sight ([`super::sight`]), normals at odds
 //! with their neighbours are left out, and the greedy fit skips points its surface passes but
 //! faces away from (`GreedySettings::skip_contradicted`). The same scan then comes out with
 //! genus 0, one piece.
@@ -126,6 +127,10 @@ pub struct ReconstructReport {
     /// noisy scan, single points; the patches again after each round of votes). Counted at
     /// each pass, like [`Self::refuted`].
     pub reversed_by_winding: usize,
+    /// Sign reversals of the spread because lines of sight say a normal points inward: the
+    /// scan stops the rays along it and not those against it (last, after the other checks;
+    /// see [`super::sight`]).
+    pub reversed_by_sight: usize,
     /// Points left out of the constraints because their normal is more than 60° from the
     /// mean of their neighbours'.
     pub disagreeing: usize,
@@ -408,6 +413,22 @@ pub fn reconstruct(
     for &i in &lone {
         spread_normals[i] = spread_normals[i].map(|c| -c);
     }
+    // Last, on a noisy scan, lines of sight: they see a part too thin for the probes above
+    // with its two sheets facing the same way, and wrong normals that the winding number
+    // passed over (a cat at 0.5 %: genus 1 → 0, F-score 0.959 → 0.976; over the 20 meshes'
+    // 40 noisy scans, 16 gained up to 0.19 and two lost up to 0.0017). Not on a clean one,
+    // whose propagation and patches leave few wrong: there its turns, right or wrong, changed
+    // little but the genus of a boat (3 → 5) and a sword (22 → 23).
+    let reversed_by_sight = if noise > SMOOTH_ABOVE {
+        super::sight::flip_against_sight(
+            &spread_points,
+            &mut spread_normals,
+            &spread_tree,
+            &spread_near,
+        )
+    } else {
+        0
+    };
     // Each inside point as far in as it stays nearest its own point (Carr et al.'s check),
     // so that it does not cross the other sheet of a part thinner than the offset.
     let inward = clear_offsets_with_tree(&spread_tree, &spread_points, &spread_normals, distance);
@@ -546,6 +567,7 @@ pub fn reconstruct(
         flipped: oriented.flipped + lone.len(),
         refuted,
         reversed_by_winding,
+        reversed_by_sight,
         disagreeing,
         contradicted: report.contradicted,
         beyond_tolerance,
@@ -992,7 +1014,7 @@ fn quadric_height(points: &[[f64; 3]], p: [f64; 3], n: [f64; 3], others: &[u32])
 }
 
 /// Two unit vectors that make a right-handed orthonormal frame with the unit normal `n`.
-fn tangent_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+pub(crate) fn tangent_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     let helper = if n[0].abs() < 0.9 {
         [1.0, 0.0, 0.0]
     } else {
