@@ -127,9 +127,9 @@ pub struct ReconstructReport {
     /// noisy scan, single points; the patches again after each round of votes). Counted at
     /// each pass, like [`Self::refuted`].
     pub reversed_by_winding: usize,
-    /// Sign reversals of the spread because lines of sight say a normal points inward: the
-    /// scan stops the rays along it and not those against it (last, after the other checks;
-    /// see [`super::sight`]).
+    /// Sign reversals of a noisy scan's spread because lines of sight say a normal points
+    /// inward: the scan stops the rays along it, and the rays against it leave the scan's box
+    /// (last, after the other checks; see [`super::sight`]).
     pub reversed_by_sight: usize,
     /// Points left out of the constraints because their normal is more than 60° from the
     /// mean of their neighbours'.
@@ -1014,7 +1014,7 @@ fn quadric_height(points: &[[f64; 3]], p: [f64; 3], n: [f64; 3], others: &[u32])
 }
 
 /// Two unit vectors that make a right-handed orthonormal frame with the unit normal `n`.
-pub(crate) fn tangent_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+pub(super) fn tangent_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     let helper = if n[0].abs() < 0.9 {
         [1.0, 0.0, 0.0]
     } else {
