@@ -27,7 +27,9 @@ number of the other points (at probes inside and outside along it; where the two
 a negative field, on a closed scan, the whole part around it points in, as a foot reached the
 wrong way through where it touches the body, and it turns), then voted on by coarse fits to
 them (in the first round only), and the patches are cut and judged again (up to three
-rounds); a lone normal against neighbours that agree is turned to them. Normals more than 60°
+rounds); a lone normal against neighbours that agree is turned to them; last, lines of sight:
+where the scan stops rays along a normal (most of a cone about it) and rays against it leave
+the box, it turns (a thin blade's two sheets facing the same way). Normals more than 60°
 from their neighbours' are left out. Each inside point of a normal constraint goes only as deep as it stays nearest
 its own point, so that thin walls are not pierced. A clean scan is then
 followed closely: a subset of its points chosen greedily carries normal constraints until the
