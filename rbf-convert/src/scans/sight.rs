@@ -214,10 +214,22 @@ mod tests {
     use crate::scans::dipoles::tests::torus;
     use rbf_cloud::{Neighbours, PointTree};
 
-    /// Whether point `i`'s single rays say its normal `n` looks in (stopped along it, open
-    /// against it): what the cones and the closedness test guard.
-    fn looks_in(rays: &Rays, i: usize, n: [f64; 3]) -> bool {
-        rays.cast(i, n) == Sight::Stopped && rays.cast(i, n.map(|c| -c)) == Sight::Open
+    /// How many of `points`' right `normals` single rays would turn (stopped along the normal,
+    /// open against it: what the cones and the closedness test guard), after checking that
+    /// [`flip_against_sight`] turns none of them.
+    fn fooled_yet_kept(points: &[[f64; 3]], normals: &[[f64; 3]]) -> usize {
+        let tree = PointTree::new(points);
+        let near = Neighbours::with_tree(&tree, points, 8);
+        let mut checked = normals.to_vec();
+        assert_eq!(flip_against_sight(points, &mut checked, &tree, &near), 0);
+        assert_eq!(checked, normals);
+        let rays = Rays::new(points, &tree, &near);
+        (0..points.len())
+            .filter(|&i| {
+                let n = normals[i];
+                rays.cast(i, n) == Sight::Stopped && rays.cast(i, n.map(|c| -c)) == Sight::Open
+            })
+            .count()
     }
 
     /// A plate 1.2 spacings thick whose lower sheet faces up like the upper one over half its
@@ -259,16 +271,8 @@ mod tests {
             .zip(all_normals)
             .filter(|(p, _)| (p[0] - 1.4).hypot(p[1]).hypot(p[2]) > 0.3)
             .unzip();
-        let tree = PointTree::new(&points);
-        let near = Neighbours::with_tree(&tree, &points, 8);
-        let rays = Rays::new(&points, &tree, &near);
-        let fooled = (0..points.len())
-            .filter(|&i| looks_in(&rays, i, normals[i]))
-            .count();
+        let fooled = fooled_yet_kept(&points, &normals);
         assert!(fooled > 0, "no single ray sees through the hole");
-        let mut checked = normals.clone();
-        assert_eq!(flip_against_sight(&points, &mut checked, &tree, &near), 0);
-        assert_eq!(checked, normals);
     }
 
     /// An open bowl (a hemisphere) with its normals into it: from its wall, the rays along a
@@ -280,15 +284,7 @@ mod tests {
         let sphere = rbf_core::shapes::fibonacci_sphere(4000);
         let points: Vec<[f64; 3]> = sphere.into_iter().filter(|p| p[2] < 0.0).collect();
         let normals: Vec<[f64; 3]> = points.iter().map(|p| p.map(|c| -c)).collect();
-        let tree = PointTree::new(&points);
-        let near = Neighbours::with_tree(&tree, &points, 8);
-        let rays = Rays::new(&points, &tree, &near);
-        let fooled = (0..points.len())
-            .filter(|&i| looks_in(&rays, i, normals[i]))
-            .count();
+        let fooled = fooled_yet_kept(&points, &normals);
         assert!(fooled > 50, "{fooled} of {}", points.len());
-        let mut checked = normals.clone();
-        assert_eq!(flip_against_sight(&points, &mut checked, &tree, &near), 0);
-        assert_eq!(checked, normals);
     }
 }
