@@ -1,12 +1,11 @@
 //! Scans to surfaces: a point cloud becomes an implicit surface (`reconstruct.rs`), with its
 //! normals checked by the winding number of the other points, whole patches (`patches.rs`) and
 //! point by point (`dipoles.rs`), by fits to them (`consensus.rs`) and by lines of sight
-//! (`sight.rs`), the fitted surface checked for space it encloses that the scan puts outside
-//! (`enclosed.rs`), and then a mesh that keeps to what the scan shows (`support.rs`).
+//! (`sight.rs`), and then a mesh that
+//! keeps to what the scan shows (`support.rs`).
 
 mod consensus;
 mod dipoles;
-mod enclosed;
 mod patches;
 mod reconstruct;
 mod sight;

@@ -28,7 +28,6 @@ use rbf_core::{Constraint, FitSettings, Model, NormalOffset};
 use crate::ConvertError;
 use crate::poisson::bounds;
 use rayon::prelude::*;
-use rbf_far::{Evaluator, default_accuracy};
 
 /// The fewest points a surface is reconstructed from.
 const FEWEST_POINTS: usize = 10;
@@ -541,7 +540,7 @@ pub fn reconstruct(
         }
         fit = rbf_solve::fit(&fitted, &fit_settings)?;
     }
-    let mut outside_added = added.iter().filter(|&&a| a).count();
+    let outside_added = added.iter().filter(|&&a| a).count();
     let nearest: Vec<f64> = (0..near.len())
         .filter_map(|i| near.distances_of(i).first().copied())
         .collect();
@@ -550,43 +549,6 @@ pub fn reconstruct(
     } else {
         super::dipoles::median(&nearest)
     };
-    // Then a clean scan's surface itself, as the mesh will show it: where it encloses space
-    // that the winding number of the oriented spread says is outside (a blister or a small
-    // tube in a crease, between the probes above), an exterior constraint goes there, and the
-    // chosen constraints are fitted again (`enclosed.rs`). Not a noisy scan's smoothing fit:
-    // measured on the boat and the fish at 0.5 %, it gained under 0.001 in F-score for 19 %
-    // and 44 % more time (13.5 → 19.4 s on the fish, 1.7× Open3D's).
-    let spread_nearest: Vec<f64> = (0..spread_near.len())
-        .filter_map(|i| spread_near.distances_of(i).first().copied())
-        .collect();
-    let scan = super::enclosed::OrientedSpread {
-        points: &spread_points,
-        normals: &spread_normals,
-        tree: &spread_tree,
-        near: &spread_near,
-        spacing: super::dipoles::median(&spread_nearest),
-    };
-    let enclosed_rounds = if smooth_fit { 0 } else { ENCLOSED_ROUNDS };
-    for _ in 0..enclosed_rounds {
-        let view = fit.interpolant.view();
-        let f = Evaluator::new(view, view.centres(), default_accuracy(view.centres()));
-        let strays = super::enclosed::enclosed_outside(
-            &f,
-            &spread_points,
-            cells_across(longest, spacing),
-            &scan,
-        );
-        if strays.is_empty() || !scan.spacing.is_finite() {
-            break;
-        }
-        outside_added += strays.len();
-        fitted.extend(
-            strays
-                .into_iter()
-                .map(|(q, r)| Constraint::exterior(q, -r / distance)),
-        );
-        fit = rbf_solve::fit(&fitted, &fit_settings)?;
-    }
     let support_reach = (1.5 * spacing).max(2.0 * tolerance * longest);
     // Outside means negative: check the shell around the box.
     let view = fit.interpolant.view();
@@ -712,9 +674,6 @@ const SMOOTHING_RESIDUAL: f64 = 1e-3;
 /// largest value times the offset: under 10⁻⁵ of the box). A clean cow scan whose one half was
 /// scanned at a twelfth of the density stopped with an error at 3.4e-6 (condition 6.9e12).
 const GREEDY_RESIDUAL: f64 = 1e-5;
-
-/// Rounds of the check of the fitted surface against the winding number ([`super::enclosed`]).
-const ENCLOSED_ROUNDS: usize = 2;
 
 /// Points per side of the lattice of outside probes.
 const LATTICE: usize = 24;
@@ -1149,13 +1108,8 @@ pub fn mesh_resolution(points: &[[f64; 3]]) -> usize {
     }
     let mid = spacing.len() / 2;
     spacing.select_nth_unstable_by(mid, f64::total_cmp);
-    cells_across(longest_side(points), spacing[mid])
-}
-
-/// Cubes across the longest side `longest` of a scan whose points lie `spacing` apart: one
-/// spacing each, from 96 to 384 (128 if the spacing is 0).
-fn cells_across(longest: f64, spacing: f64) -> usize {
-    let cells = longest / spacing.max(f64::MIN_POSITIVE);
+    let longest = longest_side(points);
+    let cells = longest / spacing[mid].max(f64::MIN_POSITIVE);
     if cells.is_finite() {
         (cells as usize).clamp(96, 384)
     } else {
