@@ -25,6 +25,7 @@ both against the true face normals); watertight, components, genus (of the large
 wall time and peak memory of the whole tool (reading and writing included).
 
     python3 -m venv /tmp/scan-venv && /tmp/scan-venv/bin/pip install numpy scipy trimesh networkx open3d pymeshlab
+    apt-get install libusb-1.0-0    # Open3D's wheel loads it (an ImportError without it)
     cargo build --release -p rbf-cli
     /tmp/scan-venv/bin/python benches/peers/scan_vs_poisson.py [--points 100000]
         [--noise 0 0.002 0.005 0.01] [--sparse 0.08] [--tools rbf open3d meshlab] [MESH ...]

@@ -39,8 +39,7 @@ smoothed points carries normal constraints in one smoothing fit (λ, --smoothing
 through the middle of the noise; --tolerance asks for the greedy fit. Holes are closed by the
 implicit surface itself, and where f is not negative just outside the scan (around it, and
 beside each point where the winding number of the oriented points does not say inside),
-outside constraints hold it down; on a clean scan, so they do where the fitted surface
-encloses space that the winding number puts outside (a blister in a crease). The mesh is polygonized with cubes about one point spacing
+outside constraints hold it down. The mesh is polygonized with cubes about one point spacing
 wide (thin parts keep their topology), without bubbles that no point is near or crumbs smaller
 than 20 points' worth of area; --trim D keeps only the surface within D of the points (an open
 scan's own surface, not what closes it).
