@@ -233,7 +233,8 @@ def reconstruct(
     centres, ``lambda`` (0 for a greedy fit), outside constraints added, bubbles dropped,
     watertight, genus, components).
 
-    ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes). A point
+    ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes; a given
+    normal of zero length is estimated too, counted as ``normals_filled``). A point
     given again at the same position is dropped; outliers (sparser than the cloud and than
     their neighbours) are dropped unless ``keep_outliers``; every normal is oriented consistently and outward.
     A clean scan is followed closely: greedily chosen points carry normal constraints until

@@ -268,6 +268,7 @@ pub(crate) fn _reconstruct<'py>(
     d.set_item("outliers", report.outliers)?;
     d.set_item("working", report.working)?;
     d.set_item("normals_estimated", report.normals_estimated)?;
+    d.set_item("normals_filled", report.normals_filled)?;
     d.set_item("flipped", report.flipped)?;
     d.set_item("refuted", report.refuted)?;
     d.set_item("reversed_by_winding", report.reversed_by_winding)?;

@@ -141,6 +141,19 @@ def test_reconstruct_a_scan_without_normals():
     assert report["reversed_by_sight"] == 0
 
 
+def test_reconstruct_estimates_given_normals_of_zero_length():
+    points = torus_lattice(3000)
+    _, _, model, report = rbfsurf.reconstruct(
+        points, np.zeros_like(points), resolution=64, return_report=True
+    )
+    assert report["normals_estimated"] and report["normals_filled"] == 0
+    assert (report["watertight"], report["genus"], report["components"]) == (True, 1, 1)
+    with pytest.raises(rbfsurf.RbfError, match=r"point 5 = \[1e\+?300"):
+        bad = points.copy()
+        bad[5] = [1e300, 0.0, 0.0]
+        rbfsurf.reconstruct(bad, resolution=64)
+
+
 def test_reconstruct_drops_repeated_points_and_says_so():
     points = torus_lattice(3000)
     twice = np.vstack([points, points[::-1]])

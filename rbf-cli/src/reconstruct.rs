@@ -177,10 +177,10 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             } else {
                 String::new()
             },
-            if report.normals_estimated {
-                "estimated"
-            } else {
-                "given"
+            match (report.normals_estimated, report.normals_filled) {
+                (true, _) => "estimated".to_string(),
+                (false, 0) => "given".to_string(),
+                (false, n) => format!("given, {n} of zero length estimated"),
             },
             report.flipped,
             report.reversed_by_winding,

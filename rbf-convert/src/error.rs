@@ -18,6 +18,16 @@ pub enum ConvertError {
         /// The least accepted.
         needed: usize,
     },
+    /// A point of a scan is not finite or lies beyond ±[`crate::LARGEST_COORDINATE`].
+    #[error(
+        "point {index} = {point:?} is not finite or lies beyond ±1e100, where squared distances overflow: give finite coordinates, scaled to the object's size"
+    )]
+    PointOutOfRange {
+        /// 0-based index of the point.
+        index: usize,
+        /// The point.
+        point: [f64; 3],
+    },
     /// The points span no volume: they lie on a plane, a line or one point.
     #[error(
         "the points lie on a {shape}: a closed surface needs points around a volume (an open scan of one side of an object cannot be closed from them)"

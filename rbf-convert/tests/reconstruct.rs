@@ -112,6 +112,32 @@ fn flipped_given_normals_are_fixed_before_fitting() {
     assert_eq!(topology(&model).1, Some(1));
 }
 
+/// Scanners write a zero normal where they have none: those points get estimated normals (and
+/// are counted), and a cloud whose normals are all zero is reconstructed as one without
+/// normals. Before, the zero normals' points were left out of the fit, and a cloud of zero
+/// normals failed with "0 constraint point(s) cannot determine a surface".
+#[test]
+fn given_normals_of_zero_length_are_estimated() {
+    let (points, truth) = torus(3000);
+    let settings = ReconstructSettings {
+        outlier_ratio: None,
+        ..Default::default()
+    };
+    let some_zero: Vec<[f64; 3]> = truth
+        .iter()
+        .enumerate()
+        .map(|(i, n)| if i % 10 == 0 { [0.0; 3] } else { *n })
+        .collect();
+    let (model, report) = reconstruct(&points, Some(&some_zero), &settings).unwrap();
+    assert!(!report.normals_estimated);
+    assert_eq!(report.normals_filled, 300);
+    assert_eq!(topology(&model).1, Some(1));
+    let (model, report) = reconstruct(&points, Some(&vec![[0.0; 3]; 3000]), &settings).unwrap();
+    assert!(report.normals_estimated);
+    assert_eq!(report.normals_filled, 0);
+    assert_eq!(topology(&model).1, Some(1));
+}
+
 #[test]
 fn outliers_are_dropped_and_counted() {
     let (mut points, _) = torus(3000);
@@ -185,6 +211,23 @@ fn flat_and_tiny_clouds_are_refused_with_what_they_are() {
     assert!(matches!(
         reconstruct(&[[1.0, 2.0, 3.0]; 40], None, &settings),
         Err(ConvertError::Flat { shape: "point" })
+    ));
+    // Coordinates whose squares overflow: such a cloud was taken for one point. And NaN, for
+    // callers of the library that do not check it first.
+    let (torus_points, _) = torus(400);
+    for bad in [f64::NAN, 1e300, -f64::INFINITY] {
+        let mut points = torus_points.clone();
+        points[7][1] = bad;
+        let refused = reconstruct(&points, None, &settings);
+        assert!(
+            matches!(refused, Err(ConvertError::PointOutOfRange { index: 7, .. })),
+            "{refused:?}"
+        );
+    }
+    let huge: Vec<[f64; 3]> = torus_points.iter().map(|p| p.map(|c| c * 1e300)).collect();
+    assert!(matches!(
+        reconstruct(&huge, None, &settings),
+        Err(ConvertError::PointOutOfRange { .. })
     ));
 }
 

@@ -11,5 +11,7 @@ mod reconstruct;
 mod sight;
 mod support;
 
-pub use reconstruct::{ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct};
+pub use reconstruct::{
+    LARGEST_COORDINATE, ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct,
+};
 pub use support::{scan_mesh, supported_pieces, trimmed};

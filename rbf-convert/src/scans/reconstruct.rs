@@ -113,8 +113,11 @@ pub struct ReconstructReport {
     /// Points the normals, orientation and fit worked on: the points kept, or a random subset
     /// of [`ReconstructSettings::working`] of them in a denser scan.
     pub working: usize,
-    /// Whether the normals were estimated (the cloud had none).
+    /// Whether the normals were estimated (the cloud had none, or only normals of zero length).
     pub normals_estimated: bool,
+    /// Given normals of zero length (or not finite) that were estimated instead, among the
+    /// points worked on (0 when the normals were estimated throughout).
+    pub normals_filled: usize,
     /// Sign reversals by the orientation: the propagation over the points worked on, and on a
     /// noisy scan at the end a lone normal of the spread against neighbours that agree.
     pub flipped: usize,
@@ -191,6 +194,15 @@ pub fn reconstruct(
     normals: Option<&[[f64; 3]]>,
     settings: &ReconstructSettings,
 ) -> Result<(Model<3>, ReconstructReport), ConvertError> {
+    if let Some(index) = points
+        .iter()
+        .position(|p| !p.iter().all(|c| c.abs() <= LARGEST_COORDINATE))
+    {
+        return Err(ConvertError::PointOutOfRange {
+            index,
+            point: points[index],
+        });
+    }
     if points.len() < FEWEST_POINTS {
         return Err(ConvertError::TooFewPoints {
             points: points.len(),
@@ -240,11 +252,31 @@ pub fn reconstruct(
     // One tree over the kept points serves their neighbourhoods of every size.
     let kept_tree = PointTree::new(&kept);
     let near = Neighbours::with_tree(&kept_tree, &kept, k);
-    let (unoriented, estimated) = match normals {
+    // A given normal of zero length (scanners write one where they had none) is estimated as
+    // if none had been given; a cloud whose given normals all have zero length has none.
+    let given: Option<Vec<[f64; 3]>> = match normals {
         Some(given) if given.len() == points.len() => {
-            (keep.iter().map(|&i| unit(given[i])).collect(), false)
+            Some(keep.iter().map(|&i| unit(given[i])).collect())
         }
-        _ => (estimate_normals(&kept, &near), true),
+        _ => None,
+    };
+    let zero = |n: &[f64; 3]| *n == [0.0; 3];
+    let (unoriented, estimated, normals_filled) = match given {
+        Some(given) if !given.iter().all(zero) => {
+            let filled = given.iter().filter(|n| zero(n)).count();
+            let normals = if filled > 0 {
+                let estimates = estimate_normals(&kept, &near);
+                given
+                    .into_iter()
+                    .zip(estimates)
+                    .map(|(n, e)| if zero(&n) { e } else { n })
+                    .collect()
+            } else {
+                given
+            };
+            (normals, false, filled)
+        }
+        _ => (estimate_normals(&kept, &near), true, 0),
     };
     let longest = longest_side(&kept);
     let (noise, wide) = measure_noise(&kept, &kept_tree, &unoriented, &near, estimated);
@@ -564,6 +596,7 @@ pub fn reconstruct(
         outliers,
         working: kept.len(),
         normals_estimated: estimated,
+        normals_filled,
         flipped: oriented.flipped + lone.len(),
         refuted,
         reversed_by_winding,
@@ -674,6 +707,10 @@ const SMOOTHING_RESIDUAL: f64 = 1e-3;
 /// largest value times the offset: under 10⁻⁵ of the box). A clean cow scan whose one half was
 /// scanned at a twelfth of the density stopped with an error at 3.4e-6 (condition 6.9e12).
 const GREEDY_RESIDUAL: f64 = 1e-5;
+
+/// The largest coordinate a scan's point may have: beyond about 1e150, squared distances
+/// overflow (a cloud at 1e300 was taken for a single point).
+pub const LARGEST_COORDINATE: f64 = 1e100;
 
 /// Points per side of the lattice of outside probes.
 const LATTICE: usize = 24;
