@@ -266,6 +266,52 @@ impl<const D: usize> System<D> {
         Interpolant::from_parts(self.kernel, self.points.clone(), weights, constant, linear)
     }
 
+    /// The normalized unknowns (weights, then the polynomial a, b₁…b_D) that give back `f`
+    /// as far as these rows allow: the inverse of the map to an interpolant. A row whose point
+    /// is one of `f`'s centres (the very same coordinates) takes its weight, every other row 0;
+    /// the polynomial is `f`'s. A starting point for an iterative solve of rows added to those
+    /// `f` was fitted to, which then has only the new rows' misses to reduce.
+    ///
+    /// ```
+    /// use rbf_core::{Constraint, FitSettings, System, shapes};
+    /// let settings = FitSettings::default();
+    /// let cs = shapes::sphere(40);
+    /// let fit = rbf_core::fit(&cs, &settings).unwrap();
+    /// // The same rows and one more, far out.
+    /// let mut more = cs.clone();
+    /// more.push(Constraint::exterior([5.0, 0.0, 0.0], -1.0));
+    /// let sys = System::new(&more, &settings)?;
+    /// let x = sys.normalized_unknowns(&fit.interpolant);
+    /// assert_eq!(x.len(), sys.size());
+    /// assert_eq!(x[sys.rows() - 1], 0.0); // the new row starts at 0
+    /// ```
+    pub fn normalized_unknowns(&self, f: &Interpolant<f64, D>) -> Vec<f64> {
+        let bits = |p: &[f64; D]| p.map(f64::to_bits);
+        let weight_of: alloc::collections::BTreeMap<[u64; D], f64> = (f.centres().iter())
+            .zip(f.weights())
+            .map(|(c, &w)| (bits(c), w))
+            .collect();
+        let s = self.scale;
+        let ws = crate::math::powi(s, self.kernel.scale_exponent());
+        let mut x: Vec<f64> = (self.points.iter())
+            .map(|p| weight_of.get(&bits(p)).map_or(0.0, |&w| w * ws))
+            .collect();
+        let linear = f.linear();
+        let mut constant = f.constant();
+        for d in 0..D {
+            constant += linear[d] * self.origin[d];
+        }
+        if self.kernel == Kernel::ThinPlate {
+            let q: f64 = (x.iter().zip(&self.normalized))
+                .map(|(wj, c)| wj * c.iter().map(|v| v * v).sum::<f64>())
+                .sum();
+            constant += crate::math::ln(s) * q;
+        }
+        x.push(constant);
+        x.extend(linear.iter().map(|b| b * s));
+        x
+    }
+
     /// The relative residual of an interpolant with these centres:
     /// max |f(cᵢ) + λᵢ wᵢ − hᵢ| / max |hᵢ|, with f, c and λ in the caller's units.
     pub fn relative_residual(&self, f: &Interpolant<f64, D>) -> f64 {
@@ -502,4 +548,64 @@ pub(crate) fn norm<const D: usize>(v: &[f64; D]) -> f64 {
         return m;
     }
     m * crate::math::sqrt(v.iter().map(|x| (x / m) * (x / m)).sum::<f64>())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes;
+
+    /// f mapped to the unknowns of a system with one more row (whose box, and so whose
+    /// normalization, differs from f's own) and back is f again, for every kernel.
+    fn gives_back<const D: usize>(
+        cs: &[Constraint<D>],
+        extra: Constraint<D>,
+        kernel: Kernel,
+    ) -> Result<(), FitError> {
+        let settings = FitSettings {
+            kernel: Some(kernel),
+            ..FitSettings::default()
+        };
+        // Offsets given, as a greedy fit gives them: the box's growth does not move them.
+        let cs: Vec<Constraint<D>> = cs
+            .iter()
+            .map(|c| Constraint {
+                offset: Some(0.05),
+                ..*c
+            })
+            .collect();
+        let f = crate::fit(&cs, &settings)?.interpolant;
+        let mut more = cs.clone();
+        more.push(extra);
+        let system = System::new(&more, &settings)?;
+        assert!(system.scale() > 1.5, "the new row widens the box");
+        let x = system.normalized_unknowns(&f);
+        let k = system.rows();
+        assert_eq!(x[k - 1], 0.0);
+        let g = system.to_interpolant(&x[..k], &x[k..]);
+        for c in cs.iter().chain([&extra]) {
+            let p = c.position.map(|v| 0.7 * v + 0.1);
+            let (a, b) = (f.value(&p), g.value(&p));
+            assert!((a - b).abs() <= 1e-9 * (1.0 + a.abs()), "{kernel:?}: {a} against {b}");
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn normalized_unknowns_give_back_the_interpolant() -> Result<(), FitError> {
+        for kernel in [Kernel::Cubic, Kernel::Linear, Kernel::ThinPlate] {
+            gives_back(
+                &shapes::sphere(30),
+                Constraint::exterior([4.0, 1.0, -2.0], -1.0),
+                kernel,
+            )?;
+        }
+        let circle: Vec<Constraint<2>> = (0..24)
+            .map(|i| {
+                let t = core::f64::consts::TAU * i as f64 / 24.0;
+                Constraint::normal([t.cos(), t.sin()], [t.cos(), t.sin()])
+            })
+            .collect();
+        gives_back(&circle, Constraint::exterior([3.5, -2.0], -1.0), Kernel::ThinPlate)
+    }
 }

@@ -118,10 +118,15 @@ pub fn fit_greedy<const D: usize>(
     let budget = greedy.max_constraints.clamp(1, constraints.len());
     let mut used = spread(&constraints, greedy.initial.clamp(1, budget));
     let mut rounds = Vec::new();
+    // Each round's fit starts from the last one's solution.
+    let mut last: Option<Interpolant<f64, D>> = None;
     loop {
         let t = Instant::now();
         let subset: Vec<Constraint<D>> = used.iter().map(|&i| constraints[i]).collect();
-        let fit = fit(&subset, settings)?;
+        let fit = match &last {
+            Some(previous) => crate::fit_from(&subset, settings, previous)?,
+            None => fit(&subset, settings)?,
+        };
         let fit_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let (mut misses, contradicted) =
@@ -158,6 +163,7 @@ pub fn fit_greedy<const D: usize>(
                 },
             ));
         }
+        last = Some(fit.interpolant);
         let mut taken = vec![false; constraints.len()];
         for &i in &used {
             taken[i] = true;

@@ -570,7 +570,7 @@ pub fn reconstruct(
             added[i] = true;
             fitted.push(outside[i]);
         }
-        fit = rbf_solve::fit(&fitted, &fit_settings)?;
+        fit = rbf_solve::fit_from(&fitted, &fit_settings, &fit.interpolant)?;
     }
     let outside_added = added.iter().filter(|&&a| a).count();
     let nearest: Vec<f64> = (0..near.len())
@@ -803,7 +803,7 @@ pub(super) fn unit(v: [f64; 3]) -> [f64; 3] {
     }
 }
 
-fn longest_side(points: &[[f64; 3]]) -> f64 {
+pub(super) fn longest_side(points: &[[f64; 3]]) -> f64 {
     let (lo, hi) = bounds(points);
     (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max)
 }

@@ -1,7 +1,7 @@
 //! Pieces of a reconstructed surface that the scan shows, and pieces it does not.
 
 use rbf_cloud::distances_to_cloud;
-use rbf_core::Model;
+use rbf_core::{ConstraintKind, Model};
 use rbf_far::{Evaluator, default_accuracy};
 use rbf_mesh::{
     MeshError, PolygonizeSettings, Resolution, TriMesh, polygonize_continuation, surface_seeds,
@@ -135,11 +135,52 @@ pub fn scan_mesh(
     // Its accuracy is measured at the centres, half of them off the surface (the normal
     // constraints' offset points): measured at the surface points alone, it was chosen too
     // low and missed between them (a noisy bunny scan's mesh lay 0.5 % of the diagonal inside
-    // its surface, F-score 0.54 against 0.98 by direct sums).
-    let f = Evaluator::new(view, view.centres(), default_accuracy(view.centres()));
+    // its surface, F-score 0.54 against 0.98 by direct sums). Its accuracy is what moves the
+    // surface by a hundredth of the scan's tolerance, no finer.
+    let f = Evaluator::new(view, view.centres(), mesh_accuracy(model, report));
     let (mesh, _) = polygonize_continuation(&f, &seeds, &settings)?;
     Ok(supported_pieces(&mesh, points, report.support_reach)?)
 }
+
+/// The share of the scan's tolerance that the mesh's evaluations may move its surface by.
+const MESH_ACCURACY: f64 = 0.01;
+
+/// The accuracy (in f's units) that [`scan_mesh`] evaluates `model` to: what moves its surface
+/// by [`MESH_ACCURACY`] of the scan's tolerance, f changing at the median slope |∇f| of its
+/// normal constraints' points; never finer than rbf-far's default (10⁻⁶ of the diagonal). The
+/// default alone took the far field to order 12 on a scan whose tolerance was 7.6·10⁻³ of the
+/// box, and its near field's direct sums most of the time.
+fn mesh_accuracy(model: &Model<3>, report: &ReconstructReport) -> f64 {
+    let view = model.interpolant.view();
+    let finest = default_accuracy(view.centres());
+    let on_surface: Vec<[f64; 3]> = (model.constraints.iter())
+        .filter(|c| c.kind == ConstraintKind::Normal)
+        .map(|c| c.position)
+        .collect();
+    let sample: Vec<[f64; 3]> = (on_surface.iter())
+        .step_by(on_surface.len().div_ceil(SLOPE_SAMPLE).max(1))
+        .copied()
+        .collect();
+    if sample.is_empty() {
+        return finest;
+    }
+    let mut values = vec![0.0; sample.len()];
+    let mut gradients = vec![[0.0; 3]; sample.len()];
+    // Lengths match by construction.
+    let _ = view.par_values_and_gradients(&sample, &mut values, &mut gradients);
+    let slopes: Vec<f64> = gradients.iter().map(|&g| rbf_core::vec3::norm(g)).collect();
+    let slope = super::dipoles::median(&slopes);
+    let longest = super::reconstruct::longest_side(&on_surface);
+    let accuracy = MESH_ACCURACY * report.tolerance * longest * slope;
+    if accuracy.is_finite() {
+        accuracy.max(finest)
+    } else {
+        finest
+    }
+}
+
+/// Points of the scan's surface at which [`mesh_accuracy`] takes f's slope.
+const SLOPE_SAMPLE: usize = 1000;
 
 /// The triangles of `mesh` whose corners all lie within `distance` of a scan point: the
 /// surface of an open scan (a face, a terrain) without what the implicit surface adds to close
@@ -172,8 +213,37 @@ pub fn trimmed(mesh: &TriMesh, points: &[[f64; 3]], distance: f64) -> Result<Tri
 
 #[cfg(test)]
 mod tests {
-    use super::supported_pieces;
+    use super::{MESH_ACCURACY, mesh_accuracy, supported_pieces};
+    use crate::{ReconstructSettings, reconstruct};
     use rbf_mesh::TriMesh;
+
+    /// The mesh's accuracy moves the surface by a hundredth of the tolerance where f has its
+    /// median slope, and by at most two hundredths at nine in ten of the scan's points.
+    #[test]
+    fn the_mesh_accuracy_moves_the_surface_by_a_hundredth_of_the_tolerance() {
+        let points: Vec<[f64; 3]> = (0..3000)
+            .map(|i| {
+                let z = 1.0 - (2 * i + 1) as f64 / 3000.0;
+                let (t, s) = (2.399963 * i as f64, (1.0 - z * z).sqrt());
+                [2.0 * s * t.cos(), 1.5 * s * t.sin(), z]
+            })
+            .collect();
+        let (model, report) = reconstruct(&points, None, &ReconstructSettings::default()).unwrap();
+        let accuracy = mesh_accuracy(&model, &report);
+        let allowed = MESH_ACCURACY * report.tolerance * 4.0; // the longest side is 4
+        let f = model.interpolant.view();
+        let mut moved: Vec<f64> = points
+            .iter()
+            .map(|p| accuracy / rbf_core::vec3::norm(f.gradient(p)))
+            .collect();
+        moved.sort_by(f64::total_cmp);
+        let (median, ninth) = (moved[moved.len() / 2], moved[moved.len() * 9 / 10]);
+        assert!(
+            median <= 1.2 * allowed && median >= 0.8 * allowed,
+            "{median} against {allowed}"
+        );
+        assert!(ninth <= 2.0 * allowed, "{ninth} against {allowed}");
+    }
 
     /// A crumb beside the surface, wider than twice the reach and every vertex of it on a scan
     /// point, but with the area of a point or two (as a clean boat scan kept one beside the

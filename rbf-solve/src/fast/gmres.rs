@@ -42,7 +42,9 @@ pub(crate) struct GmresEnd {
     pub(crate) converged: bool,
 }
 
-/// Solves A x = b from x = 0.
+/// Solves A x = b from `start` (where its residual b − A x, one product, is smaller than b's;
+/// from x = 0 otherwise): a solve of rows added to a fitted system, from that fit's solution
+/// with zeros for the new rows, has only the new rows' misses left to reduce.
 ///
 /// - `apply(v, out, residual)`: out = A v. For a Krylov direction, `residual` is the largest
 ///   entry of the residual that the direction is to reduce (the recurrence's, before this
@@ -60,8 +62,9 @@ pub(crate) struct GmresEnd {
 ///   did, with the true residual;
 /// - `progress(iteration, estimate)`: after every iteration, with the largest entry of the
 ///   recurrence's residual vector.
-pub(crate) fn fgmres(
+pub(crate) fn fgmres_from(
     b: &[f64],
+    start: Option<Vec<f64>>,
     limits: &GmresLimits,
     apply: &Operator<'_>,
     precondition: &(dyn Fn(&[f64]) -> Vec<f64> + Sync),
@@ -74,6 +77,13 @@ pub(crate) fn fgmres(
     let mut r = b.to_vec();
     let mut iterations = 0;
     let mut scratch = vec![0.0; n];
+    if let Some(start) = start.filter(|s| s.len() == n) {
+        apply(&start, &mut scratch, None);
+        let from: Vec<f64> = b.par_iter().zip(&scratch).map(|(bi, ax)| bi - ax).collect();
+        if norm(&from) < norm(b) {
+            (x, r) = (start, from);
+        }
+    }
     // The recurrence's residual over the true one at the last refused check (at most 1).
     let mut trust = 1.0_f64;
     let end = |x: Vec<f64>, iterations: usize, converged: bool| GmresEnd {
@@ -197,6 +207,19 @@ pub(crate) fn fgmres(
         // Not reached: the cycle's last step is always `last`.
         return end(x, iterations, false);
     }
+}
+
+/// [`fgmres_from`] from x = 0.
+#[cfg(test)]
+pub(crate) fn fgmres(
+    b: &[f64],
+    limits: &GmresLimits,
+    apply: &Operator<'_>,
+    precondition: &(dyn Fn(&[f64]) -> Vec<f64> + Sync),
+    accept: &mut Judge<'_>,
+    progress: &mut dyn FnMut(usize, f64),
+) -> GmresEnd {
+    fgmres_from(b, None, limits, apply, precondition, accept, progress)
 }
 
 /// x + Z y, with y = R⁻¹ s by back substitution (R the rotated Hessenberg columns).

@@ -11,7 +11,7 @@ mod schwarz;
 use rbf_core::{Fit, FitError, FitSettings, Solution, SolveMethod, System};
 
 use crate::probe::memory_budget;
-use gmres::{Acceptance, GmresLimits, Residual, fgmres};
+use gmres::{Acceptance, GmresLimits, Residual, fgmres_from};
 use products::{FAR_FIELD_ROWS, Products, RELAXED_ROWS};
 use schwarz::Schwarz;
 pub use schwarz::SchwarzSettings;
@@ -182,6 +182,19 @@ pub fn solve_iterative<const D: usize>(
     system: &System<D>,
     settings: &FitSettings,
     options: &IterativeOptions,
+    progress: impl FnMut(IterativeProgress),
+) -> Result<Fit<D>, FitError> {
+    solve_iterative_from(system, settings, options, None, progress)
+}
+
+/// [`solve_iterative`] from `start`, the system's normalized unknowns (weights, then the
+/// polynomial) of an earlier fit ([`System::normalized_unknowns`]), where that is closer than
+/// zero.
+pub(crate) fn solve_iterative_from<const D: usize>(
+    system: &System<D>,
+    settings: &FitSettings,
+    options: &IterativeOptions,
+    start: Option<Vec<f64>>,
     progress: impl FnMut(IterativeProgress),
 ) -> Result<Fit<D>, FitError> {
     let k = system.rows();
@@ -374,7 +387,15 @@ pub fn solve_iterative<const D: usize>(
         restart: options.restart,
         max_iterations: options.max_iterations,
     };
-    let mut end = fgmres(&b, &limits, &apply, &precondition, &mut accept, &mut report);
+    let mut end = fgmres_from(
+        &b,
+        start,
+        &limits,
+        &apply,
+        &precondition,
+        &mut accept,
+        &mut report,
+    );
     let (relaxed, all) = products.counts();
     if relaxed > 0 {
         (progress.borrow_mut())(IterativeProgress::Relaxed {
