@@ -1,6 +1,7 @@
 //! Fitting time against K, on the peers' workload (`peer_rbf.py`): K/2 points on the unit
 //! sphere with value 0 and K/2 moved 0.01 inward with value 1, r³ kernel; the iterative solver
-//! against the dense one where both run, and beyond; greedy fits of 10⁴–10⁵ oriented points.
+//! against the dense one where both run, and beyond; a refit of 1 % more constraints from zero
+//! and from the earlier fit; greedy fits of 10⁴–10⁵ oriented points.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rbf_benches::sphere_constraints;
@@ -75,6 +76,16 @@ fn iterative(c: &mut Criterion) {
             });
         }
     }
+    // One percent more constraints than an earlier fit took, as in a greedy round: solved from
+    // zero, and from that fit (`rbf_solve::fit_from`).
+    let cs = sphere_constraints(20_000, 0);
+    let earlier = rbf_solve::fit(&cs[..19_800], &settings).expect("fit");
+    group.bench_function(BenchmarkId::new("refit-from-zero", 20_000), |b| {
+        b.iter(|| rbf_solve::fit(&cs, &settings).expect("fit"))
+    });
+    group.bench_function(BenchmarkId::new("refit-from-earlier", 20_000), |b| {
+        b.iter(|| rbf_solve::fit_from(&cs, &settings, &earlier.interpolant).expect("fit"))
+    });
     group.finish();
 }
 
