@@ -16,7 +16,7 @@ pub(crate) struct GmresLimits {
     pub(crate) max_iterations: usize,
 }
 
-/// out = A v, given what the product is for (see [`fgmres`]).
+/// out = A v, given what the product is for (see [`fgmres_from`]).
 pub(crate) type Operator<'a> = dyn Fn(&[f64], &mut [f64], Option<f64>) + Sync + 'a;
 
 /// The caller's verdict on an iterate x, given a residual of it (of the kind `Residual` says),
@@ -209,19 +209,6 @@ pub(crate) fn fgmres_from(
     }
 }
 
-/// [`fgmres_from`] from x = 0.
-#[cfg(test)]
-pub(crate) fn fgmres(
-    b: &[f64],
-    limits: &GmresLimits,
-    apply: &Operator<'_>,
-    precondition: &(dyn Fn(&[f64]) -> Vec<f64> + Sync),
-    accept: &mut Judge<'_>,
-    progress: &mut dyn FnMut(usize, f64),
-) -> GmresEnd {
-    fgmres_from(b, None, limits, apply, precondition, accept, progress)
-}
-
 /// x + Z y, with y = R⁻¹ s by back substitution (R the rotated Hessenberg columns).
 fn iterate(x: &[f64], z: &[Vec<f64>], h: &[Vec<f64>], s: &[f64]) -> Vec<f64> {
     let k = h.len();
@@ -336,8 +323,9 @@ mod tests {
             products.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             apply(v, out, residual);
         };
-        let end = fgmres(
+        let end = fgmres_from(
             b,
+            None,
             &GmresLimits {
                 restart: 100,
                 max_iterations: 500,
@@ -375,8 +363,9 @@ mod tests {
                 }
             }
         };
-        let end = fgmres(
+        let end = fgmres_from(
             &b,
+            None,
             &GmresLimits {
                 restart: 200,
                 max_iterations: 60,
@@ -418,8 +407,9 @@ mod tests {
         let n = 200;
         let b: Vec<f64> = (0..n).map(|i| ((i * 7) % 13) as f64 - 6.0).collect();
         let mut checks = 0;
-        let end = fgmres(
+        let end = fgmres_from(
             &b,
+            None,
             &GmresLimits {
                 restart: 5,
                 max_iterations: 500,
@@ -505,8 +495,9 @@ mod tests {
     #[test]
     fn stops_unconverged_at_the_iteration_cap() {
         let b = vec![1.0; 100];
-        let end = fgmres(
+        let end = fgmres_from(
             &b,
+            None,
             &GmresLimits {
                 restart: 3,
                 max_iterations: 4,
