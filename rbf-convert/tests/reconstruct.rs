@@ -365,7 +365,7 @@ fn a_smoothing_fit_passes_through_the_middle_of_the_noise() {
 
 /// A scan whose one half is sparse and noisy: its smoothing fit has about 2·10⁴ centres and
 /// goes through the far field, which must be as accurate between the centres, where the
-/// polygonizer samples, as at them.
+/// polygonizer samples, as at them: within the accuracy the scan's tolerance asks for.
 #[test]
 fn a_sparse_noisy_scan_meshes_through_the_far_field_as_by_direct_sums() {
     let (all, _) = torus(60_000);
@@ -393,9 +393,13 @@ fn a_sparse_noisy_scan_meshes_through_the_far_field_as_by_direct_sums() {
     };
     let (a, b) = (far.positions(), direct.positions());
     let moved = apart(a, b).max(apart(b, a));
+    // The scan's mesh is evaluated to what moves the surface by a hundredth of the tolerance
+    // where f has its median slope: two hundredths anywhere (with the far field calibrated at
+    // the surface points alone, a noisy bunny's mesh lay 0.5 % of the diagonal inside).
+    let allowed = 0.02 * report.tolerance * 7.2;
     assert!(
-        moved < 1e-4 * 7.2 / 96.0,
-        "a vertex {moved} from the direct sums' mesh"
+        moved < allowed,
+        "a vertex {moved} from the direct sums' mesh, {allowed} allowed"
     );
 }
 
