@@ -277,13 +277,15 @@ impl<const D: usize> System<D> {
     /// let settings = FitSettings::default();
     /// let cs = shapes::sphere(40);
     /// let fit = rbf_core::fit(&cs, &settings).unwrap();
-    /// // The same rows and one more, far out.
+    /// // The same rows and one more, outside the sphere but within its box.
     /// let mut more = cs.clone();
-    /// more.push(Constraint::exterior([5.0, 0.0, 0.0], -1.0));
-    /// let sys = System::new(&more, &settings)?;
+    /// more.push(Constraint::exterior([0.9, 0.9, 0.0], -0.5));
+    /// let sys = System::new(&more, &settings).unwrap();
     /// let x = sys.normalized_unknowns(&fit.interpolant);
     /// assert_eq!(x.len(), sys.size());
-    /// assert_eq!(x[sys.rows() - 1], 0.0); // the new row starts at 0
+    /// let k = sys.rows();
+    /// assert!(x[..k - 1].iter().all(|&w| w != 0.0)); // the fitted rows keep their weights
+    /// assert_eq!(x[k - 1], 0.0); // the new row starts at 0
     /// ```
     pub fn normalized_unknowns(&self, f: &Interpolant<f64, D>) -> Vec<f64> {
         let bits = |p: &[f64; D]| p.map(f64::to_bits);
