@@ -217,7 +217,7 @@ def reconstruct(
     normals: Optional[ArrayLike] = None,
     *,
     tolerance: Optional[float] = None,
-    smoothing: float = 1e-4,
+    smoothing: Optional[float] = None,
     max_centres: int = 8000,
     keep_outliers: bool = False,
     resolution: Optional[int] = None,
@@ -242,7 +242,8 @@ def reconstruct(
     three times the measured noise, at least 2.5e-3) of every point, using at most
     ``max_centres``. A noisy scan (unless ``tolerance`` is given) is approximated by one
     smoothing fit of an even spread of 10⁴ of its points, with λ = ``smoothing`` for a box
-    whose longest side is 2 (larger is smoother). Where f is not
+    whose longest side is 2 (larger is smoother; default: chosen from the measured noise,
+    1e-4 at 6e-3 of the box and as its power 1.5 elsewhere). Where f is not
     negative just outside the scan, outside constraints are added; the mesh is polygonized at
     ``resolution`` cubes across the box (default: about the points' spacing), without the
     bubbles that no point of the scan is near. For an open scan, ``trim`` (a distance in the

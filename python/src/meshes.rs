@@ -188,14 +188,14 @@ pub(crate) fn _voxelize<'py>(
 /// A scan to a closed surface (see ``rbfsurf.reconstruct``): the mesh, the model and a dict
 /// of what was done.
 #[pyfunction]
-#[pyo3(signature = (points, normals=None, *, tolerance=None, smoothing=1e-4, max_centres=8000, keep_outliers=false, resolution=None, trim=None))]
+#[pyo3(signature = (points, normals=None, *, tolerance=None, smoothing=None, max_centres=8000, keep_outliers=false, resolution=None, trim=None))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 pub(crate) fn _reconstruct<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
     normals: Option<&Bound<'py, PyAny>>,
     tolerance: Option<f64>,
-    smoothing: f64,
+    smoothing: Option<f64>,
     max_centres: i64,
     keep_outliers: bool,
     resolution: Option<i64>,
@@ -230,7 +230,9 @@ pub(crate) fn _reconstruct<'py>(
             "tolerance must be a finite number > 0, not {t}"
         )));
     }
-    if !(smoothing > 0.0 && smoothing.is_finite()) {
+    if let Some(smoothing) = smoothing
+        && !(smoothing > 0.0 && smoothing.is_finite())
+    {
         return Err(bad(format!(
             "smoothing must be a finite number > 0, not {smoothing} (tolerance=T fits greedily instead)"
         )));

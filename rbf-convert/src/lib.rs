@@ -47,5 +47,5 @@ pub use normals::{NormalReport, NormalSettings, convert_normals};
 pub use poisson::poisson_subset;
 pub use scans::{
     LARGEST_COORDINATE, ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct,
-    scan_mesh, supported_pieces, trimmed,
+    scan_mesh, smoothing_for_noise, supported_pieces, trimmed,
 };

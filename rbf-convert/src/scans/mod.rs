@@ -13,5 +13,6 @@ mod support;
 
 pub use reconstruct::{
     LARGEST_COORDINATE, ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct,
+    smoothing_for_noise,
 };
 pub use support::{scan_mesh, supported_pieces, trimmed};
