@@ -243,7 +243,7 @@ def reconstruct(
     ``max_centres``. A noisy scan (unless ``tolerance`` is given) is approximated by one
     smoothing fit of an even spread of 10⁴ of its points, with λ = ``smoothing`` for a box
     whose longest side is 2 (larger is smoother; default: chosen from the measured noise,
-    1e-4 at 6e-3 of the box and as its power 1.5 elsewhere). Where f is not
+    1e-4 up to a noise of 6e-3 of the box, growing as its power 1.5 above). Where f is not
     negative just outside the scan, outside constraints are added; the mesh is polygonized at
     ``resolution`` cubes across the box (default: about the points' spacing), without the
     bubbles that no point of the scan is near. For an open scan, ``trim`` (a distance in the

@@ -36,7 +36,7 @@ followed closely: a subset of its points chosen greedily carries normal constrai
 surface passes within the tolerance of every point (three times the measured noise, at least
 2.5e-3 of the box). A noisy scan is approximated instead: an even spread of 10⁴ of its
 smoothed points carries normal constraints in one smoothing fit (λ, --smoothing: by default
-the more the noisier), which passes through the middle of the noise; --tolerance asks for the greedy fit. Holes are closed by the
+larger for a very noisy scan), which passes through the middle of the noise; --tolerance asks for the greedy fit. Holes are closed by the
 implicit surface itself, and where f is not negative just outside the scan (around it, and
 beside each point where the winding number of the oriented points does not say inside),
 outside constraints hold it down. The mesh is polygonized with cubes about one point spacing
@@ -75,8 +75,8 @@ pub(crate) struct ReconstructArgs {
     #[arg(long, value_name = "N", default_value_t = 8000)]
     max_centres: usize,
     /// λ of a noisy scan's smoothing fit, for a box whose longest side is 2: larger is
-    /// smoother, smaller follows the points more closely [default: from the measured noise,
-    /// 1e-4 at 6e-3 of the box, as its power 1.5: 2.7e-5 at 2.5e-3].
+    /// smoother, smaller follows the points more closely [default: from the measured noise:
+    /// 1e-4 up to a noise of 6e-3 of the box, growing as its power 1.5 above].
     #[arg(long, value_name = "L")]
     smoothing: Option<f64>,
     /// Keep every point (no outlier removal).

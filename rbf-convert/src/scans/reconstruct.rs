@@ -714,35 +714,42 @@ const GREEDY_RESIDUAL: f64 = 1e-5;
 pub const LARGEST_COORDINATE: f64 = 1e100;
 
 /// The λ a noisy scan's smoothing fit takes by default (for a box whose longest side is 2)
-/// for its `noise` (as a fraction of that side): 1e-4 at 6e-3 (a scan with Gaussian noise of
-/// 0.5 % of the diagonal measures 5.1e-3 to 6.3e-3), and as the noise's power 1.5 elsewhere.
+/// for its `noise` (as a fraction of that side): 1e-4 up to a noise of 6e-3 (a scan with
+/// Gaussian noise of 0.5 % of the diagonal measures 5.1e-3 to 6.3e-3), and above it growing
+/// as the noise's power 1.5.
 ///
 /// Why it grows with the noise: the normal constraints ask f = ±1 an offset in from and out
-/// of each point, so f is distance over the offset, and the fit's balance between the misses
-/// and λ times f's roughness is the same in distance units whatever the offset: one λ keeps
-/// one smoothing length at every noise level. A smoothing spline's best λ grows with the
-/// noise's variance to a power below one (σ² to the power 2m/(2m + d), 3/4 for a roughness
-/// of order m = 3 over a surface, d = 2). Measured on simulated scans of 12 meshes at 0.2 %
-/// noise (measured 2.2e-3 to 2.8e-3), λ 3e-5 against the 1e-4 that served every noise level
-/// before: F-score at 0.5 % higher on 8 (the boot 0.9695 → 0.9779, the falcon statue 0.9799 →
-/// 0.9870, the stuffed toy 0.9868 → 0.9897), lower on 3 by at most 0.0004 (the bunny);
-/// at 0.5 % noise, 3e-5 lost on 9 of 12 (the cat 0.9755 → 0.9739) and took longer.
+/// of each point, and the offset grows with the noise (four times it), so f is distance over
+/// the offset, and the fit's balance between the misses and λ times f's roughness is the same
+/// in distance units whatever the offset: one λ keeps one smoothing length at every noise
+/// level. A smoothing spline's best λ grows as the noise's variance to a power below one (σ²
+/// to the power 2m/(2m + d): 3/4 for a roughness of order m = 3 over a surface, d = 2).
+/// Measured at noise 1 % of the diagonal (measured 7.7e-3 to 1.1e-2), λ 2.8e-4 against 1e-4:
+/// F-score at 0.5 % the bunny 0.9275 → 0.9476, the cat 0.6561 → 0.7070 (genus 84 → 23), the
+/// boot 0.7634 → 0.7774 (genus 33 → 4), the cow 0.8283 → 0.8238.
+///
+/// Why not below 1e-4: at 0.2 % noise (measured 2.2e-3 to 2.8e-3), the same rule's λ of about
+/// 3e-5 raised the F-score of detailed meshes (the boot 0.9695 → 0.9794, the falcon statue
+/// 0.9799 → 0.9887) but gave the falcon statue and the sword at 0.2 and 0.5 % a handle each
+/// and the boot a second piece, and lowered the wingnut 0.9987 → 0.9967 and the torus 0.9999 →
+/// 0.9996 (one sitting over 20 meshes): a thinner smoothing trades topology for detail.
 ///
 /// ```
 /// use rbf_convert::smoothing_for_noise;
+/// assert_eq!(smoothing_for_noise(2.5e-3), 1e-4);
 /// assert_eq!(smoothing_for_noise(6e-3), 1e-4);
-/// assert!((smoothing_for_noise(2.4e-3) - 2.53e-5).abs() < 1e-7);
+/// assert!((smoothing_for_noise(1.2e-2) - 2.83e-4).abs() < 1e-6);
 /// ```
 pub fn smoothing_for_noise(noise: f64) -> f64 {
-    REFERENCE_SMOOTHING * (noise / REFERENCE_NOISE).powf(1.5)
+    REFERENCE_SMOOTHING * (noise / REFERENCE_NOISE).max(1.0).powf(1.5)
 }
 
-/// The noise (a fraction of the box's longest side) at which [`smoothing_for_noise`] gives
-/// [`REFERENCE_SMOOTHING`].
+/// The noise (a fraction of the box's longest side) above which [`smoothing_for_noise`] grows.
 const REFERENCE_NOISE: f64 = 6e-3;
 
-/// The smoothing at [`REFERENCE_NOISE`]: 1e-4 (at 0.5 % noise, 3e-5 and 1e-5 lost F-score on
-/// 9 of 12 meshes, and 1e-3 rounded details off at 0.2 %).
+/// The smoothing up to [`REFERENCE_NOISE`]: 1e-4 (at 0.2 % noise, 1e-5 kept bumps over sparse
+/// regions and 1e-3 rounded details off; at 0.5 %, 3e-5 and 1e-5 lost F-score on 9 of 12
+/// meshes).
 const REFERENCE_SMOOTHING: f64 = 1e-4;
 
 /// Points per side of the lattice of outside probes.
