@@ -748,8 +748,8 @@ pub fn smoothing_for_noise(noise: f64) -> f64 {
 const REFERENCE_NOISE: f64 = 6e-3;
 
 /// The smoothing up to [`REFERENCE_NOISE`]: 1e-4 (at 0.2 % noise, 1e-5 kept bumps over sparse
-/// regions and 1e-3 rounded details off; at 0.5 %, 3e-5 and 1e-5 lost F-score on 9 of 12
-/// meshes).
+/// regions and 1e-3 rounded details off; at 0.5 %, 3e-5 lost F-score on 8 of 12 meshes and
+/// 1e-5 on 9).
 const REFERENCE_SMOOTHING: f64 = 1e-4;
 
 /// Points per side of the lattice of outside probes.
