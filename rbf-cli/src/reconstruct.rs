@@ -36,10 +36,10 @@ followed closely: a subset of its points chosen greedily carries normal constrai
 surface passes within the tolerance of every point (three times the measured noise, at least
 2.5e-3 of the box). A noisy scan is approximated instead: an even spread of 10⁴ of its
 smoothed points carries normal constraints in one smoothing fit (λ, --smoothing: by default
-larger for a very noisy scan), which passes through the middle of the noise; --tolerance asks for the greedy fit. Holes are closed by the
-implicit surface itself, and where f is not negative just outside the scan (around it, and
-beside each point where the winding number of the oriented points does not say inside),
-outside constraints hold it down. The mesh is polygonized with cubes about one point spacing
+larger for a very noisy scan), which passes through the middle of the noise; --tolerance asks
+for the greedy fit. Holes are closed by the implicit surface itself, and where f is not
+negative just outside the scan (around it, and beside each point where the winding number of
+the oriented points does not say inside), outside constraints hold it down. The mesh is polygonized with cubes about one point spacing
 wide (thin parts keep their topology), without bubbles that no point is near or crumbs smaller
 than 20 points' worth of area; --trim D keeps only the surface within D of the points (an open
 scan's own surface, not what closes it).
