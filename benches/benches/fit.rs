@@ -86,6 +86,19 @@ fn iterative(c: &mut Criterion) {
     group.bench_function(BenchmarkId::new("refit-from-earlier", 20_000), |b| {
         b.iter(|| rbf_solve::fit_from(&cs, &settings, &earlier.interpolant).expect("fit"))
     });
+    // And with the earlier fit's preconditioner kept (`rbf_solve::fit_from_keeping`): the 200
+    // added rows get small subdomains of their own. The first 19 800 are fitted once more with
+    // a preconditioner kept; each iteration then starts from it (a solve with a kept
+    // preconditioner keeps it as it was).
+    let mut kept = rbf_solve::KeptPreconditioner::default();
+    rbf_solve::fit_from_keeping(&cs[..19_800], &settings, &earlier.interpolant, &mut kept)
+        .expect("fit");
+    group.bench_function(BenchmarkId::new("refit-kept-preconditioner", 20_000), |b| {
+        b.iter(|| {
+            rbf_solve::fit_from_keeping(&cs, &settings, &earlier.interpolant, &mut kept)
+                .expect("fit")
+        })
+    });
     group.finish();
 }
 

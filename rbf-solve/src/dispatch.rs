@@ -5,7 +5,7 @@
 use rbf_core::{Constraint, Fit, FitError, FitSettings, Interpolant, System};
 
 use crate::fast::{
-    IterativeOptions, IterativeProgress, check_iterative_fits, solve_iterative_from,
+    IterativeOptions, IterativeProgress, Kept, check_iterative_fits, solve_iterative_from,
 };
 use crate::fit::{DENSE_LIMIT, SolveOptions, solve};
 use crate::memory::check_constraints_fit;
@@ -70,7 +70,7 @@ pub fn fit_with<const D: usize>(
     options: &FitOptions,
     progress: impl FnMut(FitProgress),
 ) -> Result<Fit<D>, FitError> {
-    fit_from_with(constraints, settings, options, None, progress)
+    fit_from_with(constraints, settings, options, None, None, progress)
 }
 
 /// Fits `constraints` (as [`crate::fit`] does) that add to those `previous` was fitted to: an
@@ -100,6 +100,67 @@ pub fn fit_from<const D: usize>(
         settings,
         &FitOptions::default(),
         Some(previous),
+        None,
+        |_| {},
+    )
+}
+
+/// The iterative solver's preconditioner, kept from one fit for the next fit of the same
+/// constraints followed by a few more ([`fit_from_keeping`]): the next solve factors
+/// subdomains for the added rows only, and leaves the rest of the preconditioner as it was
+/// (its coarse level and the subdomains of the rows before; they overlap the added ones
+/// without them). A scan's last outside refits and a greedy fit's last rounds add a few
+/// rows to thousands.
+///
+/// Empty at first and after a dense solve; it serves a system whose first rows are exactly
+/// those it was built on (points, smoothing, kernel and normalization) and that adds at most
+/// a twentieth of them, and is built anew for any other.
+pub struct KeptPreconditioner<const D: usize> {
+    kept: Option<Kept<D>>,
+}
+
+impl<const D: usize> Default for KeptPreconditioner<D> {
+    fn default() -> Self {
+        Self { kept: None }
+    }
+}
+
+impl<const D: usize> KeptPreconditioner<D> {
+    /// Whether a preconditioner is kept.
+    pub fn is_kept(&self) -> bool {
+        self.kept.is_some()
+    }
+}
+
+/// [`fit_from`], keeping the iterative solver's preconditioner in `kept` for the next fit and
+/// using the one kept there where it serves (see [`KeptPreconditioner`]). Constraints added
+/// since must come after the earlier ones, in the same order.
+///
+/// ```
+/// use rbf_core::{Constraint, FitSettings, shapes};
+/// use rbf_solve::{KeptPreconditioner, fit_from_keeping};
+/// let settings = FitSettings::default();
+/// let mut cs = shapes::sphere(3000); // 6000 rows: iterative
+/// let mut kept = KeptPreconditioner::default();
+/// let first = rbf_solve::fit(&cs, &settings).unwrap();
+/// let first = fit_from_keeping(&cs, &settings, &first.interpolant, &mut kept).unwrap();
+/// assert!(kept.is_kept());
+/// cs.push(Constraint::exterior([3.0, 0.0, 0.0], -1.0));
+/// let fit = fit_from_keeping(&cs, &settings, &first.interpolant, &mut kept).unwrap();
+/// assert!(fit.interpolant.value(&[3.0, 0.0, 0.0]) < 0.0);
+/// ```
+pub fn fit_from_keeping<const D: usize>(
+    constraints: &[Constraint<D>],
+    settings: &FitSettings,
+    previous: &Interpolant<f64, D>,
+    kept: &mut KeptPreconditioner<D>,
+) -> Result<Fit<D>, FitError> {
+    fit_from_with(
+        constraints,
+        settings,
+        &FitOptions::default(),
+        Some(previous),
+        Some(&mut kept.kept),
         |_| {},
     )
 }
@@ -109,6 +170,7 @@ fn fit_from_with<const D: usize>(
     settings: &FitSettings,
     options: &FitOptions,
     previous: Option<&Interpolant<f64, D>>,
+    kept: Option<&mut Option<Kept<D>>>,
     mut progress: impl FnMut(FitProgress),
 ) -> Result<Fit<D>, FitError> {
     let rows: usize = constraints.iter().map(Constraint::rows).sum();
@@ -126,11 +188,14 @@ fn fit_from_with<const D: usize>(
     progress(FitProgress::Checking { rows });
     let system = System::new(constraints, settings)?;
     if dense {
+        if let Some(kept) = kept {
+            *kept = None;
+        }
         progress(FitProgress::Factoring { rows });
         solve(&system, settings, &options.dense)
     } else {
         let start = previous.map(|f| system.normalized_unknowns(f));
-        solve_iterative_from(&system, settings, &options.iterative, start, |p| {
+        solve_iterative_from(&system, settings, &options.iterative, start, kept, |p| {
             progress(FitProgress::Iterative(p))
         })
     }
@@ -162,7 +227,7 @@ mod tests {
             ..FitOptions::default()
         };
         let cs = shapes::sphere(800);
-        let first = fit_from_with(&cs, &settings, &options, None, |_| {}).unwrap();
+        let first = fit_from_with(&cs, &settings, &options, None, None, |_| {}).unwrap();
         let mut more = cs.clone();
         // More points of the same sphere, between the others: the earlier fit nearly meets
         // them already, as a greedy round's worst-met points nearly are.
@@ -171,9 +236,16 @@ mod tests {
             let p = [0.6 * t.cos(), 0.6 * t.sin(), 0.8];
             Constraint::normal(p, p)
         }));
-        let cold = fit_from_with(&more, &settings, &options, None, |_| {}).unwrap();
-        let warm =
-            fit_from_with(&more, &settings, &options, Some(&first.interpolant), |_| {}).unwrap();
+        let cold = fit_from_with(&more, &settings, &options, None, None, |_| {}).unwrap();
+        let warm = fit_from_with(
+            &more,
+            &settings,
+            &options,
+            Some(&first.interpolant),
+            None,
+            |_| {},
+        )
+        .unwrap();
         assert!(
             warm.report.iterations < cold.report.iterations,
             "{} iterations from the earlier fit, {} from zero",
@@ -190,5 +262,73 @@ mod tests {
             );
             assert!((a - b).abs() < 1e-4, "{a} against {b} at {:?}", c.position);
         }
+    }
+
+    /// A kept preconditioner serves the same constraints with a few appended: the fit agrees
+    /// with one whose preconditioner is built anew, the kept one is still the first system's
+    /// (its subdomains and coarse level reused, the added rows' own beside them), and a system
+    /// whose first rows differ (normalization moved by a far point) gets one of its own.
+    #[test]
+    fn a_kept_preconditioner_serves_appended_constraints() {
+        let settings = FitSettings::default();
+        let options = FitOptions {
+            method: Method::Iterative,
+            ..FitOptions::default()
+        };
+        let cs = shapes::sphere(1500);
+        let mut kept = None;
+        let first = fit_from_with(&cs, &settings, &options, None, Some(&mut kept), |_| {}).unwrap();
+        assert_eq!(kept.as_ref().map(|k| k.rows()), Some(3000));
+        let mut more = cs.clone();
+        more.extend((0..40).map(|i| {
+            let t = core::f64::consts::TAU * (i as f64 + 0.37) / 40.0;
+            let p = [0.6 * t.cos(), 0.6 * t.sin(), 0.8];
+            Constraint::normal(p, p)
+        }));
+        more.push(Constraint::interior([0.0, 0.2, 0.5], 0.5));
+        let reused = fit_from_with(
+            &more,
+            &settings,
+            &options,
+            Some(&first.interpolant),
+            Some(&mut kept),
+            |_| {},
+        )
+        .unwrap();
+        assert_eq!(kept.as_ref().map(|k| k.rows()), Some(3000), "built anew");
+        let fresh = fit_from_with(
+            &more,
+            &settings,
+            &options,
+            Some(&first.interpolant),
+            None,
+            |_| {},
+        )
+        .unwrap();
+        let limit = options.iterative.default_limit.unwrap();
+        assert!(
+            reused.report.residual <= limit,
+            "{}",
+            reused.report.residual
+        );
+        for c in &more {
+            let (a, b) = (
+                fresh.interpolant.value(&c.position),
+                reused.interpolant.value(&c.position),
+            );
+            assert!((a - b).abs() < 1e-4, "{a} against {b} at {:?}", c.position);
+        }
+        // A point far out moves the normalization: the kept preconditioner does not serve.
+        more.push(Constraint::exterior([0.0, 0.0, 9.0], -8.0));
+        fit_from_with(
+            &more,
+            &settings,
+            &options,
+            Some(&reused.interpolant),
+            Some(&mut kept),
+            |_| {},
+        )
+        .unwrap();
+        assert_eq!(kept.as_ref().map(|k| k.rows()), Some(3082));
     }
 }

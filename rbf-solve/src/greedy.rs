@@ -69,7 +69,8 @@ pub struct GreedyRound {
 pub struct GreedyReport<const D: usize> {
     /// Every round, in order.
     pub rounds: Vec<GreedyRound>,
-    /// Indices (into the input) of the constraints the returned fit uses, in the order given.
+    /// Indices (into the input) of the constraints the returned fit uses: the first spread in
+    /// the order given, then each round's in the order taken (worst first).
     pub used: Vec<usize>,
     /// Those constraints as fitted: a normal constraint carries the offset that the whole set
     /// gave it (explicitly, so that a model of these constraints alone reproduces the fit).
@@ -118,13 +119,16 @@ pub fn fit_greedy<const D: usize>(
     let budget = greedy.max_constraints.clamp(1, constraints.len());
     let mut used = spread(&constraints, greedy.initial.clamp(1, budget));
     let mut rounds = Vec::new();
-    // Each round's fit starts from the last one's solution.
+    // Each round's fit starts from the last one's solution, and keeps its preconditioner for
+    // the next: a round's constraints come after the ones before, so that a round that adds
+    // few (the last ones add 1–70 to thousands) factors subdomains for those only.
     let mut last: Option<Interpolant<f64, D>> = None;
+    let mut kept = crate::KeptPreconditioner::default();
     loop {
         let t = Instant::now();
         let subset: Vec<Constraint<D>> = used.iter().map(|&i| constraints[i]).collect();
         let fit = match &last {
-            Some(previous) => crate::fit_from(&subset, settings, previous)?,
+            Some(previous) => crate::fit_from_keeping(&subset, settings, previous, &mut kept)?,
             None => fit(&subset, settings)?,
         };
         let fit_seconds = t.elapsed().as_secs_f64();
@@ -180,7 +184,6 @@ pub fn fit_greedy<const D: usize>(
         let mut picks = Spread::new(apart);
         worst.retain(|&i| picks.len() < add && picks.insert(constraints[i].position));
         used.extend(worst);
-        used.sort_unstable();
     }
 }
 

@@ -43,7 +43,9 @@ mod memory;
 mod probe;
 mod projected;
 
-pub use dispatch::{FitOptions, FitProgress, Method, fit_from, fit_with};
+pub use dispatch::{
+    FitOptions, FitProgress, KeptPreconditioner, Method, fit_from, fit_from_keeping, fit_with,
+};
 pub use fast::{
     IterativeOptions, IterativeProgress, SchwarzSettings, check_iterative_fits, solve_iterative,
 };

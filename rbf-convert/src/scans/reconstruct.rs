@@ -553,6 +553,9 @@ pub fn reconstruct(
     let at: Vec<[f64; 3]> = outside.iter().map(|c| c.position).collect();
     let mut added = vec![false; outside.len()];
     let mut values = vec![0.0; at.len()];
+    // Each refit appends its constraints, so the next (which adds fewer) keeps the
+    // preconditioner and factors subdomains for its own only.
+    let mut preconditioner = rbf_solve::KeptPreconditioner::default();
     for _ in 0..OUTSIDE_ROUNDS {
         // Lengths match by construction.
         let _ = fit.interpolant.view().par_values(&at, &mut values);
@@ -571,7 +574,12 @@ pub fn reconstruct(
             added[i] = true;
             fitted.push(outside[i]);
         }
-        fit = rbf_solve::fit_from(&fitted, &fit_settings, &fit.interpolant)?;
+        fit = rbf_solve::fit_from_keeping(
+            &fitted,
+            &fit_settings,
+            &fit.interpolant,
+            &mut preconditioner,
+        )?;
     }
     let outside_added = added.iter().filter(|&&a| a).count();
     let nearest: Vec<f64> = (0..near.len())

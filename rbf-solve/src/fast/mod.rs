@@ -184,23 +184,110 @@ pub fn solve_iterative<const D: usize>(
     options: &IterativeOptions,
     progress: impl FnMut(IterativeProgress),
 ) -> Result<Fit<D>, FitError> {
-    solve_iterative_from(system, settings, options, None, progress)
+    solve_iterative_from(system, settings, options, None, None, progress)
+}
+
+/// A preconditioner kept from one iterative solve for the next of the same rows followed by a
+/// few more (see [`crate::KeptPreconditioner`]).
+pub(crate) struct Kept<const D: usize> {
+    schwarz: Schwarz<D>,
+    /// Its rows' normalized points and smoothing, and the normalization's scale: a later
+    /// system whose first rows have them all is the same system with rows added.
+    points: Vec<[f64; D]>,
+    smoothing: Vec<f64>,
+    scale: f64,
+    kernel: rbf_core::Kernel,
+}
+
+/// Rows added to a kept preconditioner's are solved by subdomains of their own up to this share
+/// of its rows; beyond it, the preconditioner is built anew.
+const MOST_ADDED: f64 = 0.05;
+
+impl<const D: usize> Kept<D> {
+    fn new(schwarz: Schwarz<D>, system: &System<D>) -> Self {
+        let k = system.rows();
+        Self {
+            schwarz,
+            points: system.normalized_points().to_vec(),
+            smoothing: (0..k).map(|i| system.normalized_smoothing(i)).collect(),
+            scale: system.scale(),
+            kernel: system.kernel(),
+        }
+    }
+
+    /// The rows it was built on (the system's first).
+    #[cfg(test)]
+    pub(crate) fn rows(&self) -> usize {
+        self.points.len()
+    }
+
+    /// Whether `system` is this one's with at most [`MOST_ADDED`] of its rows added after them.
+    fn serves(&self, system: &System<D>) -> bool {
+        let k = self.points.len();
+        let n = system.rows();
+        n >= k
+            && (n - k) as f64 <= MOST_ADDED * k as f64
+            && system.scale() == self.scale
+            && system.kernel() == self.kernel
+            && system.normalized_points()[..k] == self.points[..]
+            && (0..k).all(|i| system.normalized_smoothing(i) == self.smoothing[i])
+    }
 }
 
 /// [`solve_iterative`] from `start`, the system's normalized unknowns (weights, then the
 /// polynomial) of an earlier fit ([`System::normalized_unknowns`]), where that is closer than
-/// zero.
+/// zero. With `kept`, its preconditioner is used if it serves this system (the rows it was
+/// built on, then a few more: see [`Kept`]) and left there for the next solve; a solve with it
+/// that does not converge is solved again with a preconditioner of its own.
 pub(crate) fn solve_iterative_from<const D: usize>(
     system: &System<D>,
     settings: &FitSettings,
     options: &IterativeOptions,
     start: Option<Vec<f64>>,
+    kept: Option<&mut Option<Kept<D>>>,
     progress: impl FnMut(IterativeProgress),
 ) -> Result<Fit<D>, FitError> {
+    let mut progress = progress;
+    let Some(kept) = kept else {
+        return solve_with(system, settings, options, start, None, &mut progress)
+            .map(|(fit, _)| fit);
+    };
+    let reused = kept.take().filter(|k| k.serves(system));
+    if let Some(reused) = reused {
+        match solve_with(
+            system,
+            settings,
+            options,
+            start.clone(),
+            Some(reused),
+            &mut progress,
+        ) {
+            Ok((fit, schwarz)) => {
+                *kept = schwarz;
+                return Ok(fit);
+            }
+            Err(FitError::NotConverged { .. }) => {}
+            Err(e) => return Err(e),
+        }
+    }
+    let (fit, schwarz) = solve_with(system, settings, options, start, None, &mut progress)?;
+    *kept = schwarz;
+    Ok(fit)
+}
+
+/// One iterative solve, with the preconditioner `reused` (extended to the rows added since) or
+/// one of its own; returns the fit and the preconditioner to keep.
+fn solve_with<const D: usize>(
+    system: &System<D>,
+    settings: &FitSettings,
+    options: &IterativeOptions,
+    start: Option<Vec<f64>>,
+    reused: Option<Kept<D>>,
+    progress: &mut dyn FnMut(IterativeProgress),
+) -> Result<(Fit<D>, Option<Kept<D>>), FitError> {
     let k = system.rows();
     let m = D + 1;
     check_iterative_fits(k, D, options)?;
-    let mut progress = progress;
     // A limit left at its default is the iterative solver's own.
     let raised = options.default_limit.filter(|&limit| {
         options.tolerance.is_none()
@@ -223,7 +310,12 @@ pub(crate) fn solve_iterative_from<const D: usize>(
         });
     }
     progress(IterativeProgress::Preconditioning);
-    let schwarz = Schwarz::new(system, &options.schwarz);
+    let preconditioner = match reused {
+        Some(kept) => kept,
+        None => Kept::new(Schwarz::new(system, &options.schwarz), system),
+    };
+    let schwarz = &preconditioner.schwarz;
+    let extension = (k > schwarz.row_count()).then(|| schwarz.extension(system, &options.schwarz));
     let hmax = system.values().iter().fold(0.0_f64, |a, v| a.max(v.abs()));
     let mut b = system.values().to_vec();
     b.extend(std::iter::repeat_n(0.0, m));
@@ -233,7 +325,7 @@ pub(crate) fn solve_iterative_from<const D: usize>(
     // cancellations) so that its error stays within a quarter of the tolerance; from
     // `relaxed_rows`, cheaper far fields measured on it too.
     let trial = (k >= options.far_field_rows.min(options.relaxed_rows))
-        .then(|| schwarz.apply(system, &b[..k], &b[k..]));
+        .then(|| schwarz.apply_extended(system, &b[..k], &b[k..], extension.as_ref()));
     let mut products = match &trial {
         Some(trial) if k >= options.far_field_rows => {
             Products::far(system, &trial[..k], tolerance * hmax)
@@ -256,7 +348,8 @@ pub(crate) fn solve_iterative_from<const D: usize>(
         let allowed = residual.map_or(0.0, |r| RELAXATION * tolerance * hmax / r);
         products.apply(x, out, allowed);
     };
-    let precondition = |v: &[f64]| schwarz.apply(system, &v[..k], &v[k..]);
+    let precondition =
+        |v: &[f64]| schwarz.apply_extended(system, &v[..k], &v[k..], extension.as_ref());
     let progress = std::cell::RefCell::new(progress);
     let mut last = f64::INFINITY;
     // The residual last halved at this iteration.
@@ -445,7 +538,7 @@ pub(crate) fn solve_iterative_from<const D: usize>(
     };
     // The last check measured the returned iterate: by a product (direct sums, or the far field
     // and direct sums at sampled rows), or as GMRES's residual certified at sampled rows.
-    system.accept_measured(
+    let fit = system.accept_measured(
         if end.converged || good_enough {
             &accepted
         } else {
@@ -460,7 +553,8 @@ pub(crate) fn solve_iterative_from<const D: usize>(
             iterations: end.iterations,
         },
         |_| last,
-    )
+    )?;
+    Ok((fit, Some(preconditioner)))
 }
 
 /// max over the moment conditions of |Σᵢ wᵢ pⱼ(cᵢ)| (p = 1, x): what the weights leave of them

@@ -684,18 +684,37 @@ impl<const D: usize> Schwarz<D> {
     /// what is left at its rows. Returns weights of the whole system's length (zero off this
     /// level's rows) followed by D + 1 polynomial coefficients.
     pub(crate) fn apply(&self, system: &System<D>, h: &[f64], g: &[f64]) -> Vec<f64> {
+        self.apply_extended(system, h, g, None)
+    }
+
+    /// [`Schwarz::apply`] on a system that has the rows of `extension` besides this level's
+    /// (the top level's): their own subdomains solve for them beside this level's, and the
+    /// products with the coarse level take them in.
+    pub(crate) fn apply_extended(
+        &self,
+        system: &System<D>,
+        h: &[f64],
+        g: &[f64],
+        extension: Option<&Extension<D>>,
+    ) -> Vec<f64> {
         let n = h.len();
         let coarse_rows = self.coarse.rows();
         // Pre-step on the coarse level: the global part first, so that the subdomains solve
         // only what it leaves.
         let mut z = self.coarse.solve(system, h, g);
-        let h_fine = leftover(system, &self.rows, &self.down.values(system, &z), h, &z);
-        let parts: Vec<Vec<f64>> = self
-            .fine
-            .par_iter()
+        let mut h_fine = leftover(system, &self.rows, &self.down.values(system, &z), h, &z);
+        if let Some(added) = extension {
+            let left = leftover(system, &added.rows, &added.down.values(system, &z), h, &z);
+            for &i in &added.rows {
+                h_fine[i] = left[i];
+            }
+        }
+        let added_fine: &[Subdomain] = extension.map_or(&[], |e| &e.fine);
+        let parts: Vec<Vec<f64>> = (self.fine.par_iter())
+            .chain(added_fine.par_iter())
             .map(|subdomain| subdomain.solve(&h_fine))
             .collect();
-        for (subdomain, part) in self.fine.iter().zip(&parts) {
+        for (subdomain, part) in self.fine.iter().chain(added_fine).zip(&parts) {
             for (&i, &v) in subdomain.rows[..subdomain.keep].iter().zip(part) {
                 z[i] += v;
             }
@@ -704,8 +723,17 @@ impl<const D: usize> Schwarz<D> {
             return z;
         }
         // What the weights so far leave at the coarse rows, and of the moment conditions.
-        let hc = leftover(system, coarse_rows, &self.up.values(system, &z), h, &z);
-        let gc = moments_left(system, &self.rows, g, &z);
+        let mut f = self.up.values(system, &z);
+        let mut gc = moments_left(system, &self.rows, g, &z);
+        if let Some(added) = extension {
+            // The added rows' weights alone: the affine part is in `f` already.
+            let mut weights = z.clone();
+            weights[n..].iter_mut().for_each(|v| *v = 0.0);
+            let more = added.up.values(system, &weights);
+            f.iter_mut().zip(&more).for_each(|(a, b)| *a += b);
+            gc = moments_left(system, &added.rows, &gc, &z);
+        }
+        let hc = leftover(system, coarse_rows, &f, h, &z);
         let y = self.coarse.solve(system, &hc, &gc);
         for &i in coarse_rows {
             z[i] += y[i];
@@ -713,6 +741,59 @@ impl<const D: usize> Schwarz<D> {
         z[n..].iter_mut().zip(&y[n..]).for_each(|(a, b)| *a += b);
         z
     }
+
+    /// Rows of the top level: the system's first this many.
+    pub(crate) fn row_count(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// What rows added to the system after these (the top level's, which stay its first) need:
+    /// a small subdomain around each (its [`ADDED_SUBDOMAIN`] nearest rows, old and new),
+    /// keeping its weight, and the products between them and the coarse level. Added rows lie
+    /// anywhere (the worst-met constraints of a greedy round): a subdomain over a group of
+    /// them would span the model and solve for none of them well.
+    pub(crate) fn extension(&self, system: &System<D>, settings: &SchwarzSettings) -> Extension<D> {
+        let n = system.rows();
+        let rows: Vec<usize> = (self.rows.len()..n).collect();
+        let all = system.normalized_points();
+        let tree = Tree::new(all, settings.inner);
+        let size = ADDED_SUBDOMAIN.min(n);
+        let fine = rows
+            .par_iter()
+            .filter_map(|&row| {
+                let p = all[row];
+                let mut ordered = vec![row];
+                ordered.extend(
+                    grow_box(&tree, all, &p, &p, size)
+                        .into_iter()
+                        .filter(|&i| i != row),
+                );
+                Subdomain::new(system, ordered, 1)
+            })
+            .collect();
+        let down = Transfer::new(system, self.coarse.rows(), &rows);
+        let up = Transfer::new(system, &rows, self.coarse.rows());
+        Extension {
+            rows,
+            fine,
+            down,
+            up,
+        }
+    }
+}
+
+/// Rows of the subdomain around each added row (see [`Schwarz::extension`]).
+const ADDED_SUBDOMAIN: usize = 128;
+
+/// Rows added to a system after its preconditioner was built (see [`Schwarz::extension`]).
+pub(crate) struct Extension<const D: usize> {
+    /// The added rows of the whole system.
+    rows: Vec<usize>,
+    fine: Vec<Subdomain>,
+    /// Weights on the coarse rows to values at the added rows.
+    down: Transfer<D>,
+    /// Weights on the added rows to values at the coarse rows.
+    up: Transfer<D>,
 }
 
 /// What weights `z` leave of `h` at `rows`, given f there (`f`, in the order of `rows`): h − f −
@@ -766,15 +847,24 @@ fn grow<const D: usize>(
     size: usize,
 ) -> Vec<usize> {
     let node = &tree.nodes[leaf];
-    let diagonal = (0..D)
-        .map(|d| (node.hi[d] - node.lo[d]).powi(2))
-        .sum::<f64>()
-        .sqrt();
+    grow_box(tree, points, &node.lo, &node.hi, size)
+}
+
+/// The `size` rows of `tree` nearest to the box from `lo` to `hi`, by growing a search radius
+/// around it.
+fn grow_box<const D: usize>(
+    tree: &Tree<D>,
+    points: &[[f64; D]],
+    lo: &[f64; D],
+    hi: &[f64; D],
+    size: usize,
+) -> Vec<usize> {
+    let diagonal = (0..D).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt();
     let mut radius = (0.5 * diagonal).max(1e-6);
     let mut found = Vec::new();
     loop {
         found.clear();
-        tree.near_box(points, &node.lo, &node.hi, radius, &mut found);
+        tree.near_box(points, lo, hi, radius, &mut found);
         if found.len() >= size || radius > 8.0 {
             break;
         }
