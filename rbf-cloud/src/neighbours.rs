@@ -131,9 +131,9 @@ impl Neighbours {
     }
 }
 
-/// The `k` nearest points to point `i` at `p`, other than itself, nearest first.
 /// Points whose k + 1 nearest a search within a radius looks for at once: a fifth of the rows
-/// reach beyond it and are searched again by [`PointTree::k_nearest`].
+/// reach beyond it and are searched again by [`PointTree::k_nearest`]. A region denser than
+/// most gathers more points than it needs (a cluster ten times as dense, ten times as many).
 const WITHIN_SHARE: f64 = 0.8;
 
 /// A radius within which about [`WITHIN_SHARE`] of the points have their k + 1 nearest (their
@@ -148,7 +148,9 @@ fn typical_reach(tree: &PointTree, points: &[[f64; 3]], k: usize) -> f64 {
         return 0.0;
     }
     let at = ((reach.len() as f64 * WITHIN_SHARE) as usize).min(reach.len() - 1);
-    *reach.select_nth_unstable_by(at, f64::total_cmp).1
+    let reach = *reach.select_nth_unstable_by(at, f64::total_cmp).1;
+    // Points not finite (found by nothing) leave every row to the k-nearest search.
+    if reach.is_finite() { reach } else { 0.0 }
 }
 
 /// Point `i`'s row as [`row`] finds it, through the points within `reach` when there are k + 1
@@ -177,6 +179,7 @@ fn row_within(
     row.into_iter().unzip()
 }
 
+/// The `k` nearest points to point `i` at `p`, other than itself, nearest first.
 fn row(tree: &PointTree, p: &[f64; 3], i: usize, k: usize) -> (Vec<u32>, Vec<f64>) {
     // The point itself is among them (at distance 0, maybe behind a duplicate).
     let mut row: Vec<(u32, f64)> = (tree.k_nearest(p, k + 1).into_iter())

@@ -20,6 +20,9 @@ pub fn poisson_subset(points: &[[f64; 3]], target: usize) -> Vec<usize> {
     if points.len() <= target {
         return (0..points.len()).collect();
     }
+    if target == 0 {
+        return Vec::new();
+    }
     let order = shuffled(points.len());
     let diameter = diameter(points);
     // Bracket: more than `target` kept at `lo` (with that count), at most at `hi`.
@@ -35,7 +38,10 @@ pub fn poisson_subset(points: &[[f64; 3]], target: usize) -> Vec<usize> {
         } else {
             hi = r;
             let done = kept.len() as f64 >= CLOSE_ENOUGH * target as f64;
-            best = kept;
+            // The count is not monotone in the radius: the largest within the target is kept.
+            if kept.len() >= best.len() {
+                best = kept;
+            }
             if done {
                 break;
             }
@@ -46,7 +52,9 @@ pub fn poisson_subset(points: &[[f64; 3]], target: usize) -> Vec<usize> {
         r = next_radius(lo, lo_count, hi, best.len(), target);
     }
     if best.is_empty() {
+        // Any subset of an evenly spread set is spread at least as far.
         best = greedy(points, &order, hi);
+        best.truncate(target);
     }
     best.sort_unstable();
     best
