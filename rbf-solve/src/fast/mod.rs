@@ -265,7 +265,9 @@ pub(crate) fn solve_iterative_from<const D: usize>(
             allow_unconverged: false,
             ..*options
         };
-        match solve_with(
+        // Not converged within the bound, or an iterate that is not finite: again below with a
+        // preconditioner of its own, from the same start (any other error recurs there).
+        if let Ok((fit, schwarz)) = solve_with(
             system,
             settings,
             &bounded,
@@ -273,13 +275,8 @@ pub(crate) fn solve_iterative_from<const D: usize>(
             Some(reused),
             &mut progress,
         ) {
-            Ok((fit, schwarz)) => {
-                *kept = schwarz;
-                return Ok(fit);
-            }
-            // Not converged within the bound, or an iterate that is not finite: again with a
-            // preconditioner of its own, from the same start (any other error recurs there).
-            Err(_) => {}
+            *kept = schwarz;
+            return Ok(fit);
         }
     }
     let (fit, schwarz) = solve_with(system, settings, options, start, None, &mut progress)?;
