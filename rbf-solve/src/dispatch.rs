@@ -206,6 +206,35 @@ mod tests {
     use super::*;
     use rbf_core::shapes;
 
+    /// `n` oriented points of the unit sphere on its circle at height 0.8, between those of
+    /// `shapes::sphere`: a fit of the sphere nearly meets them already, as a greedy round's
+    /// worst-met points nearly are.
+    fn on_the_circle_at_height_0_8(n: usize) -> impl Iterator<Item = Constraint<3>> {
+        (0..n).map(move |i| {
+            let t = core::f64::consts::TAU * (i as f64 + 0.37) / n as f64;
+            let p = [0.6 * t.cos(), 0.6 * t.sin(), 0.8];
+            Constraint::normal(p, p)
+        })
+    }
+
+    /// `cs` fitted from `earlier` with the default settings, keeping a preconditioner in `kept`.
+    fn from_earlier(
+        cs: &[Constraint<3>],
+        options: &FitOptions,
+        earlier: &Interpolant<f64, 3>,
+        kept: Option<&mut Option<Kept<3>>>,
+    ) -> Fit<3> {
+        fit_from_with(
+            cs,
+            &FitSettings::default(),
+            options,
+            Some(earlier),
+            kept,
+            |_| {},
+        )
+        .unwrap()
+    }
+
     /// Constraints added to a fitted set, which nearly meets them: solved from the earlier fit,
     /// the iterative solver meets the same limit in fewer iterations than from zero, and the
     /// surfaces agree.
@@ -231,21 +260,9 @@ mod tests {
         let mut more = cs.clone();
         // More points of the same sphere, between the others: the earlier fit nearly meets
         // them already, as a greedy round's worst-met points nearly are.
-        more.extend((0..12).map(|i| {
-            let t = core::f64::consts::TAU * (i as f64 + 0.37) / 12.0;
-            let p = [0.6 * t.cos(), 0.6 * t.sin(), 0.8];
-            Constraint::normal(p, p)
-        }));
+        more.extend(on_the_circle_at_height_0_8(12));
         let cold = fit_from_with(&more, &settings, &options, None, None, |_| {}).unwrap();
-        let warm = fit_from_with(
-            &more,
-            &settings,
-            &options,
-            Some(&first.interpolant),
-            None,
-            |_| {},
-        )
-        .unwrap();
+        let warm = from_earlier(&more, &options, &first.interpolant, None);
         assert!(
             warm.report.iterations < cold.report.iterations,
             "{} iterations from the earlier fit, {} from zero",
@@ -280,31 +297,11 @@ mod tests {
         let first = fit_from_with(&cs, &settings, &options, None, Some(&mut kept), |_| {}).unwrap();
         assert_eq!(kept.as_ref().map(|k| k.rows()), Some(3000));
         let mut more = cs.clone();
-        more.extend((0..40).map(|i| {
-            let t = core::f64::consts::TAU * (i as f64 + 0.37) / 40.0;
-            let p = [0.6 * t.cos(), 0.6 * t.sin(), 0.8];
-            Constraint::normal(p, p)
-        }));
+        more.extend(on_the_circle_at_height_0_8(40));
         more.push(Constraint::interior([0.0, 0.2, 0.5], 0.5));
-        let reused = fit_from_with(
-            &more,
-            &settings,
-            &options,
-            Some(&first.interpolant),
-            Some(&mut kept),
-            |_| {},
-        )
-        .unwrap();
+        let reused = from_earlier(&more, &options, &first.interpolant, Some(&mut kept));
         assert_eq!(kept.as_ref().map(|k| k.rows()), Some(3000), "built anew");
-        let fresh = fit_from_with(
-            &more,
-            &settings,
-            &options,
-            Some(&first.interpolant),
-            None,
-            |_| {},
-        )
-        .unwrap();
+        let fresh = from_earlier(&more, &options, &first.interpolant, None);
         let limit = options.iterative.default_limit.unwrap();
         assert!(
             reused.report.residual <= limit,
