@@ -13,8 +13,13 @@ f < 0 inside it. The genus and F-score say that something is wrong; this says wh
 Voxels whose centre lies within `--margin` voxels of the mesh (0.6 by default) are not
 counted: there the sign of a surface that passes within a voxel is a matter of where in the
 voxel it passes. Each region is printed with its voxels, its centre, its depth (the largest
-distance of its voxels from the mesh, in voxels) and its kind. Needs numpy and scipy;
-`rbf voxelize` gives the mesh's signed distances and `rbf eval` the model's values.
+distance of its voxels from the mesh, in voxels), its kind, and what setting it right would
+do to the topology of the model's inside on the grid: the change of its Euler characteristic
+(components − handles + cavities), found on a box around the region alone, since only the
+cells that touch the region change. A false handle (a bridge or a tunnel) shows as −1, a
+false piece or cavity as +1; regions that change nothing are misplaced surface. Needs numpy,
+scipy and scikit-image; `rbf voxelize` gives the mesh's signed distances and `rbf eval` the
+model's values.
 """
 import argparse
 import json
@@ -25,6 +30,7 @@ import tempfile
 
 import numpy as np
 from scipy import ndimage
+from skimage.measure import euler_number
 
 here = os.path.dirname(os.path.abspath(__file__))
 rbf = os.environ.get("RBF", os.path.join(os.path.dirname(here), "target", "release", "rbf"))
@@ -49,6 +55,15 @@ def model_values(model, points, out):
     return np.load(values)
 
 
+def euler_change(inside, truth, region, box):
+    """The Euler characteristic of `inside` minus that of `inside` with `region` set to
+    `truth`, both counted on `box` (slices around the region, a voxel beyond it at least)."""
+    now = inside[box]
+    fixed = now.copy()
+    fixed[region[box]] = truth[box][region[box]]
+    return euler_number(now, connectivity=1) - euler_number(fixed, connectivity=1)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("model", help="model file (rbf fit, convert or reconstruct --model)")
@@ -64,6 +79,8 @@ def main():
         index = np.indices(distance.shape).reshape(3, -1).T
         centres = origin + (index + 0.5) * h
         f = model_values(args.model, centres, out).reshape(distance.shape)
+    print(f"Euler characteristic on the grid: the model's inside {euler_number(f > 0, 1)}, "
+          f"the mesh's {euler_number(distance > 0, 1)}")
     margin = args.margin * h
     wrong = ((distance > margin) & (f < 0)) | ((distance < -margin) & (f > 0))
     labels, count = ndimage.label(wrong)
@@ -72,6 +89,15 @@ def main():
     if count == 0:
         return 0
     sizes = ndimage.sum(wrong, labels, range(1, count + 1))
+    boxes = ndimage.find_objects(labels)
+    inside, truth = f > 0, distance > 0
+    changes = {}
+    for r in range(count):
+        box = tuple(slice(max(b.start - 2, 0), b.stop + 2) for b in boxes[r])
+        changes[r] = euler_change(inside, truth, labels == r + 1, box) if sizes[r] else 0
+    topological = [r for r in range(count) if changes[r] != 0]
+    print(f"{len(topological)} of them change the topology: Euler characteristic "
+          f"{sum(changes.values()):+d} in all")
     for r in np.argsort(-sizes)[: args.regions]:
         voxels = labels == r + 1
         inside = distance[voxels] > 0
@@ -80,7 +106,14 @@ def main():
         centre = centres[voxels.ravel()].mean(axis=0)
         depth = np.abs(distance[voxels]).max() / h
         print(f"{int(sizes[r]):7d} voxels at {np.array2string(centre, precision=3)}, "
-              f"{depth:.1f} voxels deep: {kind}")
+              f"{depth:.1f} voxels deep: {kind}; Euler {changes[r]:+d}")
+    print("changing the topology:")
+    for r in sorted(topological, key=lambda r: -sizes[r]):
+        voxels = labels == r + 1
+        centre = centres[voxels.ravel()].mean(axis=0)
+        inside_mesh = distance[voxels].mean() > 0
+        print(f"{int(sizes[r]):7d} voxels at {np.array2string(centre, precision=3)}: "
+              f"{'f < 0 inside' if inside_mesh else 'f > 0 outside'}, Euler {changes[r]:+d}")
     return 0
 
 

@@ -248,3 +248,39 @@ fn bad_2d_boxes_and_sizes_are_clear_errors() {
     .unwrap_err();
     assert!(e.to_string().contains("no voxel is inside"), "{e}");
 }
+
+/// The paper stops once the largest error is within a voxel; this loop goes on while the RMS
+/// of the errors is above its target too (a surface a voxel off in many places), and stops at
+/// the first iteration within both. The torus at 64 is within a voxel at once, RMS 0.35.
+#[test]
+fn the_loop_goes_on_while_its_rms_is_above_the_target() {
+    let mesh = read_mesh(&data("torus.obj")).unwrap();
+    let run = |target_rms: f64| {
+        let s = IterativeSettings {
+            resolution: 64,
+            target_rms,
+            ..Default::default()
+        };
+        convert_iterative(&mesh, &s, |_, _| {}).unwrap().1
+    };
+    let target = IterativeSettings::default();
+    // By the paper's rule alone: one iteration, within a voxel but not within the RMS target.
+    let paper = run(f64::INFINITY);
+    let first = paper.iterations[0];
+    assert_eq!(paper.iterations.len(), 1, "{:?}", paper.iterations);
+    assert!(first.max_error <= target.target_error, "{first:?}");
+    assert!(first.rms_error > target.target_rms, "{first:?}");
+    // With it: on until both are met, and no further.
+    let ours = run(target.target_rms);
+    let (last, before) = ours.iterations.split_last().unwrap();
+    assert!(!before.is_empty());
+    for it in before {
+        assert!(
+            it.max_error > target.target_error || it.rms_error > target.target_rms,
+            "{it:?}"
+        );
+    }
+    assert!(last.max_error <= target.target_error, "{last:?}");
+    assert!(last.rms_error <= target.target_rms, "{last:?}");
+    assert_eq!(ours.best, ours.iterations.len());
+}

@@ -324,7 +324,8 @@ fn refine_to_goal<const D: usize>(
         }
         lowest_max = lowest_max.min(max_error);
         lowest_rms = lowest_rms.min(rms_error);
-        let done = (max_error <= settings.target_error && !violated)
+        let within = max_error <= settings.target_error && rms_error <= settings.target_rms;
+        let done = (within && !violated)
             || since_progress >= settings.patience
             || iteration == settings.max_iterations
             || constraints.len() >= settings.max_constraints;
@@ -334,8 +335,8 @@ fn refine_to_goal<const D: usize>(
             let room = settings.max_constraints.saturating_sub(constraints.len());
             let probes = fixes.len().min(room);
             constraints.extend(fixes.into_iter().take(probes));
-            // Once the error is within its target, only the probes are added.
-            let refined = if max_error <= settings.target_error {
+            // Once the errors are within their targets, only the probes are added.
+            let refined = if within {
                 0
             } else {
                 goal.refine(&errors, &mut constraints, settings, since_progress > 0)

@@ -18,6 +18,10 @@ pub struct IterativeSettings {
     pub initial_constraints: usize,
     /// Stop when the maximum error is at most this many voxels (§5.4): 1.
     pub target_error: f64,
+    /// And when the RMS of those errors is at most this many voxels (not in the paper): 0.3.
+    /// Its maximum within a voxel, a loop whose RMS is still high has a surface that lies a
+    /// voxel off in many places, and ends about a quarter voxel from the mesh on the whole.
+    pub target_rms: f64,
     /// Stop after this many iterations without progress (§5.4): 4. Progress is a better model
     /// or an error below every one before (the maximum, or the RMS by a hundredth): the loop
     /// does not stop while its errors still fall.
@@ -62,6 +66,7 @@ impl Default for IterativeSettings {
             voxel_method: VoxelMethod::Auto,
             initial_constraints: 50,
             target_error: 1.0,
+            target_rms: 0.3,
             patience: 4,
             max_iterations: 30,
             max_constraints: 4000,
