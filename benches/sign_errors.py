@@ -100,8 +100,8 @@ def main():
           f"{sum(changes.values()):+d} in all")
     for r in np.argsort(-sizes)[: args.regions]:
         voxels = labels == r + 1
-        inside = distance[voxels] > 0
-        kind = ("f < 0 inside the mesh (a tunnel or gap)" if inside.mean() > 0.5
+        in_mesh = (distance[voxels] > 0).mean()
+        kind = ("f < 0 inside the mesh (a tunnel or gap)" if in_mesh > 0.5
                 else "f > 0 outside the mesh (a film, bridge or piece)")
         centre = centres[voxels.ravel()].mean(axis=0)
         depth = np.abs(distance[voxels]).max() / h
@@ -111,9 +111,9 @@ def main():
     for r in sorted(topological, key=lambda r: -sizes[r]):
         voxels = labels == r + 1
         centre = centres[voxels.ravel()].mean(axis=0)
-        inside_mesh = distance[voxels].mean() > 0
+        in_mesh = (distance[voxels] > 0).mean()
         print(f"{int(sizes[r]):7d} voxels at {np.array2string(centre, precision=3)}: "
-              f"{'f < 0 inside' if inside_mesh else 'f > 0 outside'}, Euler {changes[r]:+d}")
+              f"{'f < 0 inside' if in_mesh > 0.5 else 'f > 0 outside'}, Euler {changes[r]:+d}")
     return 0
 
 
