@@ -19,8 +19,8 @@ pub(crate) const HELP: &str = "\
 --method iterative (Yngve & Turk): voxelize the mesh (--resolution voxels along its longest side,
 winding numbers if it is not watertight), then fit, measure the two-way error between the goal's
 and the surface's boundary voxels, and add constraints where it is largest, until the error is
-at most a voxel, 4 iterations bring no improvement, --max-iterations pass or --max-constraints
-are placed. The best model seen is written; --report writes every iteration's figures as JSON.
+at most a voxel with an RMS of at most 0.3 voxel, 4 iterations bring no improvement,
+--max-iterations pass or --max-constraints are placed. The best model seen is written; --report writes every iteration's figures as JSON.
 For a closed mesh its topology is then kept: the voxel error cannot see gaps or parts thinner
 than a voxel, so the middle of every gap and part narrower than two voxels is probed, probes on
 the wrong side of the surface become exterior or interior constraints, and the surface is

@@ -1,6 +1,7 @@
 //! The iterative conversion of Yngve & Turk (2002), §3–§5: voxelize the mesh, then fit,
 //! measure the two-way error between the goal's and the current surface's boundary voxels, and
-//! add constraints where it is largest, until the surface is within a voxel of the goal.
+//! add constraints where it is largest, until the surface is within a voxel of the goal (and
+//! within 0.3 voxel on the whole, by the RMS).
 //!
 //! The loop's rooms: the goal volume, its signed distance and the choice of new constraints
 //! (`goal.rs`, with the nearest-voxel search of `nearest.rs`); probes that keep a closed mesh's
@@ -260,7 +261,8 @@ pub fn convert_iterative_2d(
 }
 
 /// The loop of Yngve & Turk (2002, §5): fit, evaluate, measure, add constraints, until the
-/// error is within `target_error` voxels or a limit of §5.4 is reached; returns the best model.
+/// error is within `target_error` voxels (and its RMS within `target_rms`) or a limit of §5.4 is
+/// reached; returns the best model.
 fn refine_to_goal<const D: usize>(
     goal: &Goal,
     settings: &IterativeSettings,
