@@ -155,7 +155,28 @@ pub fn fit_greedy<const D: usize>(
         rounds.push(round);
         let converged = max <= tolerance;
         let room = budget.saturating_sub(used.len());
-        if converged || room == 0 {
+        // The worst-met constraints not yet taken; with λ > 0 the taken ones miss too, and
+        // when only they do, there is nothing left to add.
+        let mut worst = Vec::new();
+        if !converged && room > 0 {
+            let mut taken = vec![false; constraints.len()];
+            for &i in &used {
+                taken[i] = true;
+            }
+            worst = (0..constraints.len())
+                .filter(|&i| !taken[i] && misses[i] > tolerance)
+                .collect();
+            worst.sort_unstable_by(|&a, &b| misses[b].total_cmp(&misses[a]));
+            let add = ((used.len() as f64 * greedy.growth).ceil() as usize).clamp(1, room);
+            // The worst-met constraints crowd together where the surface is worst; taking
+            // them all would spend the round on a few places. Keep picks half the centres'
+            // spacing apart.
+            let positions: Vec<[f64; D]> = used.iter().map(|&i| constraints[i].position).collect();
+            let apart = 0.5 * mean_spacing(&positions);
+            let mut picks = Spread::new(apart);
+            worst.retain(|&i| picks.len() < add && picks.insert(constraints[i].position));
+        }
+        if worst.is_empty() {
             return Ok((
                 fit,
                 GreedyReport {
@@ -168,21 +189,6 @@ pub fn fit_greedy<const D: usize>(
             ));
         }
         last = Some(fit.interpolant);
-        let mut taken = vec![false; constraints.len()];
-        for &i in &used {
-            taken[i] = true;
-        }
-        let mut worst: Vec<usize> = (0..constraints.len())
-            .filter(|&i| !taken[i] && misses[i] > tolerance)
-            .collect();
-        worst.sort_unstable_by(|&a, &b| misses[b].total_cmp(&misses[a]));
-        let add = ((used.len() as f64 * greedy.growth).ceil() as usize).clamp(1, room);
-        // The worst-met constraints crowd together where the surface is worst; taking them
-        // all would spend the round on a few places. Keep picks half the centres' spacing apart.
-        let positions: Vec<[f64; D]> = used.iter().map(|&i| constraints[i].position).collect();
-        let apart = 0.5 * mean_spacing(&positions);
-        let mut picks = Spread::new(apart);
-        worst.retain(|&i| picks.len() < add && picks.insert(constraints[i].position));
         used.extend(worst);
     }
 }

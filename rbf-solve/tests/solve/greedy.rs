@@ -211,3 +211,30 @@ fn contradicted_normals_are_skipped_when_asked() {
         assert!(fit.interpolant.value(&inside) > 0.0, "inside {i}");
     }
 }
+
+/// With λ > 0 the surface misses the constraints it takes on purpose; when only those miss,
+/// there is nothing left to add, and the fit stops there (not converged) instead of fitting
+/// the same subset again for ever, as it did.
+#[test]
+fn a_smoothing_fit_stops_when_only_its_own_centres_miss() {
+    // A sphere with one point pulled out to a spike: the smoothing passes under the spike (the
+    // first constraint, always among the first subset) and near every other point.
+    let mut cs: Vec<Constraint<3>> = rbf_core::shapes::fibonacci_sphere(400)
+        .into_iter()
+        .map(|u| Constraint::normal(u, u))
+        .collect();
+    cs[0].position = cs[0].position.map(|x| 1.3 * x);
+    let settings = FitSettings {
+        lambda: 1e-3,
+        ..Default::default()
+    };
+    let greedy = GreedySettings {
+        tolerance: 0.01,
+        ..Default::default()
+    };
+    let (_, report) = fit_greedy(&cs, &settings, &greedy, |_| {}).unwrap();
+    assert!(!report.converged);
+    assert!(report.used.contains(&0) && report.used.len() < cs.len());
+    let last = report.rounds.last().unwrap();
+    assert!(last.max_error > 0.01, "{last:?}");
+}
