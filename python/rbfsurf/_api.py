@@ -218,7 +218,7 @@ def reconstruct(
     *,
     tolerance: Optional[float] = None,
     smoothing: Optional[float] = None,
-    max_centres: int = 8000,
+    max_centres: Optional[int] = None,
     keep_outliers: bool = False,
     resolution: Optional[int] = None,
     trim: Optional[float] = None,
@@ -237,13 +237,14 @@ def reconstruct(
     normal of zero length is estimated too, counted as ``normals_filled``). A point
     given again at the same position is dropped; outliers (sparser than the cloud and than
     their neighbours) are dropped unless ``keep_outliers``; every normal is oriented consistently and outward.
-    A clean scan is followed closely: greedily chosen points carry normal constraints until
-    the surface passes within ``tolerance`` (a fraction of the box's longest side; default
-    three times the measured noise, at least 2.5e-3) of every point, using at most
-    ``max_centres``. A noisy scan (unless ``tolerance`` is given) is approximated by one
-    smoothing fit of an even spread of 10⁴ of its points, with λ = ``smoothing`` for a box
-    whose longest side is 2 (larger is smoother; default: chosen from the measured noise,
-    1e-4 up to a noise of 6e-3 of the box, growing as its power 1.5 above). Where f is not
+    An even spread of the points then carries normal constraints in one smoothing fit, with
+    λ = ``smoothing`` for a box whose longest side is 2 (larger is smoother; default: chosen
+    from the measured noise: 3e-5 on a clean scan, which follows the points closely but does
+    not close narrow crevices over; 1e-4 up to a noise of 6e-3 of the box, growing as its
+    power 1.5 above): 1.5·10⁴ points of a clean scan, 10⁴ of a noisy one. With ``tolerance``
+    (a fraction of the box's longest side) greedily chosen points carry the constraints
+    instead, until the surface passes within it of every point. ``max_centres`` caps the
+    points that carry constraints in either fit (default: the spreads above; 8000 greedy). Where f is not
     negative just outside the scan, outside constraints are added; the mesh is polygonized at
     ``resolution`` cubes across the box (default: about the points' spacing), without the
     bubbles that no point of the scan is near. For an open scan, ``trim`` (a distance in the

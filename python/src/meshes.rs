@@ -188,7 +188,7 @@ pub(crate) fn _voxelize<'py>(
 /// A scan to a closed surface (see ``rbfsurf.reconstruct``): the mesh, the model and a dict
 /// of what was done.
 #[pyfunction]
-#[pyo3(signature = (points, normals=None, *, tolerance=None, smoothing=None, max_centres=8000, keep_outliers=false, resolution=None, trim=None))]
+#[pyo3(signature = (points, normals=None, *, tolerance=None, smoothing=None, max_centres=None, keep_outliers=false, resolution=None, trim=None))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 pub(crate) fn _reconstruct<'py>(
     py: Python<'py>,
@@ -196,7 +196,7 @@ pub(crate) fn _reconstruct<'py>(
     normals: Option<&Bound<'py, PyAny>>,
     tolerance: Option<f64>,
     smoothing: Option<f64>,
-    max_centres: i64,
+    max_centres: Option<i64>,
     keep_outliers: bool,
     resolution: Option<i64>,
     trim: Option<f64>,
@@ -242,13 +242,15 @@ pub(crate) fn _reconstruct<'py>(
     {
         return Err(bad(format!("trim must be a finite number > 0, not {d}")));
     }
-    let settings = ReconstructSettings {
+    let mut settings = ReconstructSettings {
         tolerance,
-        max_centres: count(max_centres, 10..=1_000_000, "max_centres")?,
         smoothing,
         outlier_ratio: (!keep_outliers).then_some(2.5),
         ..Default::default()
     };
+    if let Some(n) = max_centres {
+        settings = settings.with_max_centres(count(n, 10..=1_000_000, "max_centres")?);
+    }
     let resolution = resolution
         .map(|r| count(r, 2..=2048, "resolution"))
         .transpose()?;
