@@ -127,6 +127,8 @@ def test_bad_options_are_value_errors_not_panics():
         lambda: rbfsurf.Session(rbfsurf.from_oriented_points(p, p, smoothing=0.1)),
         lambda: rbfsurf.Session(rbfsurf.from_oriented_points(p, p, kernel="linear")),
         lambda: rbfsurf.convert(np.zeros((3, 3)), [[0, 1, 2]], method="other"),
+        lambda: rbfsurf.reconstruct(p, max_centres=5),
+        lambda: rbfsurf.reconstruct(p, max_centres=-1),
         lambda: rbfsurf.Session(rbfsurf.RBFInterpolator(p[:, :2], p[:, 2]).models[0]),
     ]:
         with pytest.raises(ValueError):

@@ -571,8 +571,13 @@ impl Job<'_> {
         write_atomically(self.output, model.to_json().as_bytes())?;
         let last = greedy_report.rounds.last().map_or(0.0, |r| r.max_error);
         if !greedy_report.converged {
+            let remedy = if model.constraints.len() < greedy.max_constraints {
+                "the centres' own smoothing misses them: lower --lambda or raise --tolerance"
+            } else {
+                "raise --max-centres or --tolerance"
+            };
             eprintln!(
-                "rbf: warning: {} constraints still miss by up to {last:.2e} of the box (tolerance {:.1e}); raise --max-centres or --tolerance",
+                "rbf: warning: {} constraints still miss by up to {last:.2e} of the box (tolerance {:.1e}); {remedy}",
                 model.constraints.len(),
                 greedy.tolerance
             );

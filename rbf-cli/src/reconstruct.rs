@@ -78,7 +78,8 @@ pub(crate) struct ReconstructArgs {
     max_centres: Option<usize>,
     /// λ of the smoothing fit, for a box whose longest side is 2: larger is smoother, smaller
     /// follows the points more closely [default: from the measured noise: 3e-5 on a clean
-    /// scan, 1e-4 up to a noise of 6e-3 of the box, growing as its power 1.5 above].
+    /// scan, 1e-4 up to a noise of 6e-3 of the box, growing as its power 1.5 above; not used
+    /// with --tolerance].
     #[arg(long, value_name = "L")]
     smoothing: Option<f64>,
     /// Keep every point (no outlier removal).

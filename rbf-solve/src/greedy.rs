@@ -6,7 +6,8 @@
 //! cannot be fitted whole on this machine. Most of those constraints say again what their
 //! neighbours already say: the greedy fit starts from an evenly spread subset, measures how far
 //! the surface misses every constraint, adds the worst ones and fits again, until every
-//! constraint is met within the tolerance or the budget of centres is spent.
+//! constraint is met within the tolerance or the budget of centres is spent (or, with λ > 0,
+//! only the centres taken still miss: their smoothing misses on purpose).
 
 use std::time::Instant;
 
@@ -87,7 +88,8 @@ pub struct GreedyReport<const D: usize> {
 /// within `greedy.tolerance` (see [`GreedySettings`]). Every constraint is checked first, as by
 /// [`fit`]; normal constraints keep the offset the whole set gives them. The fit uses
 /// [`GreedyReport::constraints`] (the input's [`GreedyReport::used`]); with a tolerance of 0
-/// and room for all, it is the full fit.
+/// and room for all, it is the full fit. It stops, not converged, when the budget is spent or
+/// when only the constraints it took miss (with λ > 0, which misses on purpose).
 ///
 /// ```
 /// use rbf_core::{Constraint, FitSettings};

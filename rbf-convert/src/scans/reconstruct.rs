@@ -16,9 +16,10 @@
 //! over the crevices between them. So a noisy scan is smoothed on neighbourhoods as wide as its noise asks, its
 //! normals are voted on by fits to the other points ([`super::consensus`]) and checked by lines
 //! of sight ([`super::sight`]), normals at odds
-//! with their neighbours are left out, and the greedy fit skips points its surface passes but
-//! faces away from (`GreedySettings::skip_contradicted`). The same scan then comes out with
-//! genus 0, one piece.
+//! with their neighbours are left out, and it is fitted by one smoothing fit of an even spread
+//! (a greedy fit, when a tolerance is asked for, skips points its surface passes but faces
+//! away from: `GreedySettings::skip_contradicted`). The same scan then comes out with genus 0,
+//! one piece.
 
 use rbf_cloud::{
     Neighbours, PointTree, clear_offsets_with_tree, distinct_points, estimate_normals, normal_of,
@@ -52,9 +53,10 @@ pub struct ReconstructSettings {
     /// Drop points whose mean distance to their 20 nearest neighbours exceeds the cloud's mean
     /// by this many standard deviations: 2.5; `None` keeps every point.
     pub outlier_ratio: Option<f64>,
-    /// How far the surface may pass from a point, as a fraction of the box's longest side;
-    /// `None` (the default): three times the noise measured about the local planes, and at
-    /// least 2.5e-3.
+    /// `Some`: fit greedily until the surface passes within this of every point, as a
+    /// fraction of the box's longest side (λ and the smoothing spreads are then not used).
+    /// `None` (the default): one smoothing fit, whose misses are counted against three times
+    /// the noise measured about the local planes, and at least 2.5e-3.
     pub tolerance: Option<f64>,
     /// The most points that carry constraints in a greedy fit (when a tolerance is given):
     /// 8000 (the clean knot, falcon statue and boot scans of the benchmark need 5380, 6474
@@ -69,7 +71,8 @@ pub struct ReconstructSettings {
     pub offset: NormalOffset,
     /// The most points a scan is worked on: 10⁵. A denser one is taken as a random subset of
     /// this many (after its outliers are dropped), which has its noise and the density of a
-    /// scan this size. Its fit takes at most 2·10⁴ of them anyway (1.5·10⁴ by default), and its neighbourhoods, a
+    /// scan this size. Its fit takes at most an even spread of 1.5·10⁴ of them anyway (2·10⁴
+    /// for a greedy fit), and its neighbourhoods, a
     /// fixed count of points, shrink as it grows denser while its noise does not: on a
     /// simulated bunny scan of 10⁶ points with noise of 0.2 % of the diagonal, taken whole, a
     /// third of the normals came out flipped and the surface with genus 215; 10⁵ of them,
@@ -412,7 +415,7 @@ pub fn reconstruct(
     let spread_near = Neighbours::with_tree(&spread_tree, &spread_points, 8);
     let mut reversed_by_winding = 0;
     let mut refuted = 0;
-    let cuts: &[f64] = if noise > SMOOTH_ABOVE {
+    let cuts: &[f64] = if noisy {
         &[super::patches::CUT]
     } else {
         &[super::patches::CUT, super::patches::FINE_CUT]
@@ -770,7 +773,10 @@ fn distances_to_zero_set(f: &rbf_core::Interpolant<f64, 3>, points: &[[f64; 3]])
 /// offset, so the surface moves by at most 0.07 of the offset at a constraint: a quarter of the
 /// noise at worst (the offset is at least four times the noise), a fiftieth on that cow. Solved
 /// to the iterative solver's usual 1e-5, the fit and its refits took 6–12 iterations each on
-/// that scan; 5–8 at this. The model keeps this limit in its settings.
+/// that scan; 5–8 at this. On a clean scan the offset is 1 % of the box, so the surface may
+/// move by up to 7e-4 of it, under a third of the smallest tolerance (2.5e-3); the clean
+/// scans' figures of the benchmark were measured so. The model keeps this limit in its
+/// settings.
 const SMOOTHING_RESIDUAL: f64 = 1e-3;
 
 /// The residual a greedy fit (a tolerance asked for) is solved to, relative to the largest
