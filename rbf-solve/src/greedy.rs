@@ -157,27 +157,13 @@ pub fn fit_greedy<const D: usize>(
         rounds.push(round);
         let converged = max <= tolerance;
         let room = budget.saturating_sub(used.len());
-        // The worst-met constraints not yet taken; with λ > 0 the taken ones miss too, and
-        // when only they do, there is nothing left to add.
-        let mut worst = Vec::new();
-        if !converged && room > 0 {
-            let mut taken = vec![false; constraints.len()];
-            for &i in &used {
-                taken[i] = true;
-            }
-            worst = (0..constraints.len())
-                .filter(|&i| !taken[i] && misses[i] > tolerance)
-                .collect();
-            worst.sort_unstable_by(|&a, &b| misses[b].total_cmp(&misses[a]));
+        // With λ > 0 the taken constraints miss too; when only they do, nothing is left to add.
+        let worst = if converged || room == 0 {
+            Vec::new()
+        } else {
             let add = ((used.len() as f64 * greedy.growth).ceil() as usize).clamp(1, room);
-            // The worst-met constraints crowd together where the surface is worst; taking
-            // them all would spend the round on a few places. Keep picks half the centres'
-            // spacing apart.
-            let positions: Vec<[f64; D]> = used.iter().map(|&i| constraints[i].position).collect();
-            let apart = 0.5 * mean_spacing(&positions);
-            let mut picks = Spread::new(apart);
-            worst.retain(|&i| picks.len() < add && picks.insert(constraints[i].position));
-        }
+            worst_untaken(&constraints, &used, &misses, tolerance, add)
+        };
         if worst.is_empty() {
             return Ok((
                 fit,
@@ -193,6 +179,30 @@ pub fn fit_greedy<const D: usize>(
         last = Some(fit.interpolant);
         used.extend(worst);
     }
+}
+
+/// Up to `add` of the constraints not in `used` that miss by more than `tolerance`, worst
+/// first. The worst-met crowd together where the surface is worst; taking them all would spend
+/// the round on a few places, so picks stay half the centres' spacing apart.
+fn worst_untaken<const D: usize>(
+    constraints: &[Constraint<D>],
+    used: &[usize],
+    misses: &[f64],
+    tolerance: f64,
+    add: usize,
+) -> Vec<usize> {
+    let mut taken = vec![false; constraints.len()];
+    for &i in used {
+        taken[i] = true;
+    }
+    let mut worst: Vec<usize> = (0..constraints.len())
+        .filter(|&i| !taken[i] && misses[i] > tolerance)
+        .collect();
+    worst.sort_unstable_by(|&a, &b| misses[b].total_cmp(&misses[a]));
+    let positions: Vec<[f64; D]> = used.iter().map(|&i| constraints[i].position).collect();
+    let mut picks = Spread::new(0.5 * mean_spacing(&positions));
+    worst.retain(|&i| picks.len() < add && picks.insert(constraints[i].position));
+    worst
 }
 
 /// The constraints with every normal constraint's offset made explicit, as the whole set
