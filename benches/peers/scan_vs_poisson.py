@@ -2,7 +2,8 @@
 """Scans to surfaces: `rbf reconstruct` beside Open3D's screened Poisson pipeline (and
 pymeshlab's, when installed), on the same simulated scans, in one sitting.
 
-Each scan is made from a closed mesh of ../shared/data/meshes, seeded and repeatable:
+Each scan is made from a closed mesh of ../shared/data/meshes, seeded (`--seed`, 11 by
+default) and repeatable:
 
 - N points spread by area with an uneven density (a smooth random field over the object makes
   some regions up to four times as dense as others);
@@ -28,7 +29,8 @@ wall time and peak memory of the whole tool (reading and writing included).
     apt-get install libusb-1.0-0    # Open3D's wheel loads it (an ImportError without it)
     cargo build --release -p rbf-cli
     /tmp/scan-venv/bin/python benches/peers/scan_vs_poisson.py [--points 100000]
-        [--noise 0 0.002 0.005 0.01] [--sparse 0.08] [--tools rbf open3d meshlab] [MESH ...]
+        [--noise 0 0.002 0.005 0.01] [--sparse 0.08] [--seed 11] [--tools rbf open3d meshlab]
+        [MESH ...]
 
 Prints one JSON line per scan and tool, then a Markdown table.
 """
@@ -212,6 +214,8 @@ def main():
     ap.add_argument("--points", type=int, default=100_000)
     ap.add_argument("--noise", type=float, nargs="+", default=[0.0, 0.002, 0.005])
     ap.add_argument("--depth", type=int, default=None, help="Poisson depth (9, 10 from 5e5)")
+    ap.add_argument("--seed", type=int, default=11,
+                    help="seed of the simulated scans (11: the README's tables)")
     ap.add_argument("--sparse", type=float, default=None,
                     help="keep only this share of the points on one half of each object")
     ap.add_argument("--tools", nargs="+", default=["rbf", "open3d", "meshlab"],
@@ -230,7 +234,7 @@ def main():
         truth_samples, _ = trimesh.sample.sample_surface(truth, 100_000, seed=3)
         for noise in args.noise:
             out_dir = tempfile.mkdtemp(prefix=f"scan-{name}-")
-            cloud, clean, normals, real, order = simulate(truth, args.points, noise, seed=11,
+            cloud, clean, normals, real, order = simulate(truth, args.points, noise, seed=args.seed,
                                                           sparse=args.sparse)
             cloud_path = os.path.join(out_dir, "cloud.npy")
             np.save(cloud_path, cloud)
