@@ -225,8 +225,13 @@ fn surface_topology(
     cell: f64,
     voxel: f64,
 ) -> (Option<i64>, usize, Option<TriMesh>) {
+    // Vertices where f's linear interpolation along each crossed edge is zero: the topology of
+    // f's signs at the lattice points, within a small fraction of a cube of the surface (0.15
+    // at most in rbf-mesh's tests; the polish asks only whether they are a voxel off), at 0.6 of the time with root finding (the falcon statue at
+    // cubes of 0.27 voxel: 3.2 s instead of 5.2 for each of its three measures).
     let settings = PolygonizeSettings {
         resolution: Resolution::CellSize(cell),
+        root_iterations: 0,
         ..Default::default()
     };
     let f = model.interpolant.view();

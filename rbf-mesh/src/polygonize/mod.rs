@@ -50,6 +50,8 @@ pub struct PolygonizeSettings {
     /// How the grid method decides that a block of 4³ cubes holds no surface.
     pub skip: BlockSkip,
     /// Rounds of root finding along each edge (a secant step, then safeguarded Newton). 8.
+    /// 0 leaves each vertex where the linear interpolation of f along its edge is zero, with
+    /// no normal: the topology of f's signs at the lattice points, without evaluating f again.
     pub root_iterations: usize,
 }
 

@@ -40,7 +40,10 @@ struct Search {
 /// An edge is done when |f| is below 1e-8 of the change of f along it, or its Newton step is
 /// below 1e-3 of its length (Newton's error is then of the order of the step's square: the
 /// vertex is within about 1e-6 of an edge length of the surface), after at most `iterations`
-/// rounds.
+/// rounds. With `iterations` 0, f is not evaluated again: each vertex stays at the secant
+/// point of its edge (where the linear interpolation of f between the edge's ends is zero),
+/// the mesh is simplified as usual, and its vertices carry no normals. That surface has the
+/// topology of f's signs at the lattice points, for a fraction of the cost.
 ///
 /// `unique` lists each crossed edge once; `triangles` are on its indices.
 pub(crate) fn assemble(
@@ -105,6 +108,10 @@ pub(crate) fn assemble(
     let kept: Vec<usize> = (0..merged.len())
         .filter(|&v| merged[v] as usize == v)
         .collect();
+    if iterations == 0 {
+        let triangles = reindex(&merged, &kept, triangles);
+        return TriMesh::new(kept.iter().map(|&v| estimates[v]).collect(), triangles);
+    }
     let mut pending: Vec<usize> = kept.clone();
     for round in 0..iterations.max(1) {
         let points: Vec<[f64; 3]> = pending
@@ -201,18 +208,24 @@ pub(crate) fn assemble(
         .into_iter()
         .filter(|&v| merged[v] as usize == v)
         .collect();
-    let mut new_index = vec![u32::MAX; merged.len()];
-    for (i, &v) in kept.iter().enumerate() {
-        new_index[v] = i as u32;
-    }
-    let mut triangles: Vec<[u32; 3]> = triangles
-        .into_iter()
-        .map(|t| t.map(|v| new_index[merged[v as usize] as usize]))
-        .collect();
+    let mut triangles = reindex(&merged, &kept, triangles);
     let positions: Vec<[f64; 3]> = kept.iter().map(|&v| positions[v]).collect();
     let normals: Vec<[f64; 3]> = kept.iter().map(|&v| normals[v]).collect();
     // Root finding moved vertices after the first collapses: flip back any triangle that
     // turned over.
     simplify::unfold(&positions, &normals, &mut triangles);
     TriMesh::new(positions, triangles)?.with_normals(normals)
+}
+
+/// `triangles` on the vertices that a collapse `merged` into the `kept` ones, numbered as
+/// `kept` orders them.
+fn reindex(merged: &[u32], kept: &[usize], triangles: Vec<[u32; 3]>) -> Vec<[u32; 3]> {
+    let mut new_index = vec![u32::MAX; merged.len()];
+    for (i, &v) in kept.iter().enumerate() {
+        new_index[v] = i as u32;
+    }
+    triangles
+        .into_iter()
+        .map(|t| t.map(|v| new_index[merged[v as usize] as usize]))
+        .collect()
 }

@@ -241,6 +241,37 @@ fn torus_has_genus_one() {
 }
 
 #[test]
+fn without_root_finding_the_same_topology_near_the_surface() {
+    // A torus and a sphere: no root finding leaves each vertex at its edge's secant point,
+    // within 0.15 of a cube of the surface (0.11 here), and keeps the sign pattern's genus
+    // and components, the same as with root finding.
+    let mut constraints = torus(400);
+    constraints.extend(sphere_at([3.0, 0.0, 0.0], 150));
+    let m = model(constraints);
+    let f = m.interpolant.view();
+    let rough = PolygonizeSettings {
+        root_iterations: 0,
+        ..settings(64)
+    };
+    let (exact, _) = polygonize_continuation(&f, &surface_seeds(&m), &settings(64)).unwrap();
+    let (secant, stats) = polygonize_continuation(&f, &surface_seeds(&m), &rough).unwrap();
+    let (a, b) = (exact.check(), secant.check());
+    assert!(b.is_watertight(), "{b:?}");
+    assert_eq!((b.genus, b.components), (Some(1), 2));
+    assert_eq!((a.genus, a.components), (b.genus, b.components));
+    assert!(secant.normals().is_none());
+    let mut worst: f64 = 0.0;
+    for p in secant.positions() {
+        let (v, g) = m.interpolant.value_and_gradient(p);
+        worst = worst.max(v.abs() / crate::norm(g) / stats.cell_size);
+    }
+    assert!(worst < 0.15, "{worst}");
+    // The vertex counts differ by what the second simplification after root finding merges.
+    let (na, nb) = (exact.positions().len(), secant.positions().len());
+    assert!(na.abs_diff(nb) * 20 < na, "{na} {nb}");
+}
+
+#[test]
 fn surface_extent_is_the_box_of_the_mesh_within_a_fraction_of_a_cube() {
     // The torus lies in the box [−1.4, 1.4]² × [−0.4, 0.4] (radii 1 and 0.4).
     let m = model(torus(400));
