@@ -265,8 +265,9 @@ fn surface_topology(
 ) -> (Option<i64>, usize, Option<TriMesh>) {
     // Vertices where f's linear interpolation along each crossed edge is zero: the topology of
     // f's signs at the lattice points, within a small fraction of a cube of the surface (0.15
-    // at most in rbf-mesh's tests; the polish asks only whether they are a voxel off), at 0.6 of the time with root finding (the falcon statue at
-    // cubes of 0.27 voxel: 3.2 s instead of 5.2 for each of its three measures).
+    // at most in rbf-mesh's tests; the polish asks only whether they are a voxel off), in about
+    // half the time of root finding (the falcon statue at cubes of 0.27 voxel: 2.6–3.0 s
+    // instead of 5.0–5.4 for each of its three measures).
     let settings = PolygonizeSettings {
         resolution: Resolution::CellSize(cell),
         root_iterations: 0,

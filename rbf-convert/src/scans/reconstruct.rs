@@ -873,8 +873,8 @@ const OUTSIDE_WINDING: f64 = 0.25;
 /// the mesh in three pieces); claimed so, the leg kept whole. Over clean scans of the 20 meshes
 /// at two seeds: 10 F-scores at 0.5 % rose, 8 by more than 5e-4 (the hammer 0.9926 → 0.9976,
 /// the goat head 0.9935 → 0.9961, the cat 0.9946 → 0.9975), 3 fell (the penguin 0.9969 →
-/// 0.9958, the sword 0.7208 → 0.7053 and by 7e-4 at the other seed), no genus changed. Every probe near a hole (winding number above 0.01) said one
-/// offset instead cost the boat (0.9921 → 0.9829) and the sword (F-score 0.16: it ballooned, its
+/// 0.9958, the sword 0.7208 → 0.7053 and by 7e-4 at the other seed), no genus changed. Every
+/// probe near a hole (winding number above 0.01) said one offset instead cost the boat (0.9921 → 0.9829) and the sword (F-score 0.16: it ballooned, its
 /// blade's normals flipped and its winding numbers astray); probes 4 offsets from the scan
 /// instead of 2 cost the fish (0.9890 → 0.9814).
 fn lattice_claim(reach: f64, w: f64, offset: f64) -> f64 {
