@@ -230,7 +230,7 @@ def reconstruct(
     estimated and flipped (``reversed_by_winding``: by the winding number of the others;
     ``refuted``: reversed by fits; ``reversed_by_sight``: by lines of sight;
     ``disagreeing``: left out), noise,
-    centres, ``lambda`` (0 for a greedy fit), outside constraints added, bubbles dropped,
+    centres, ``lambda`` (0 for a greedy fit), outside constraints added, ``bubbles_dropped`` (pieces the scan cannot show),
     watertight, genus, components).
 
     ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes; a given
@@ -247,7 +247,8 @@ def reconstruct(
     points that carry constraints in either fit (default: the spreads above; 8000 greedy). Where f is not
     negative just outside the scan, outside constraints are added; the mesh is polygonized at
     ``resolution`` cubes across the box (default: about the points' spacing), without the
-    bubbles that no point of the scan is near. For an open scan, ``trim`` (a distance in the
+    bubbles that no point of the scan is near, crumbs, and closed cavities inside the solid
+    (which no scanner sees: the inside of an opening narrower than a point spacing). For an open scan, ``trim`` (a distance in the
     points' units) keeps only the surface within it of the points: the mesh is then open.
 
     >>> import numpy as np, rbfsurf

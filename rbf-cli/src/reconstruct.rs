@@ -40,8 +40,9 @@ of the points chosen greedily carries the constraints until the surface passes w
 every point (up to --max-centres; films may close crevices over). Holes are closed by the implicit surface itself, and where f is not
 negative just outside the scan (around it, and beside each point where the winding number of
 the oriented points does not say inside), outside constraints hold it down. The mesh is polygonized with cubes about one point spacing
-wide (thin parts keep their topology), without bubbles that no point is near or crumbs smaller
-than 20 points' worth of area; --trim D keeps only the surface within D of the points (an open
+wide (thin parts keep their topology), without bubbles that no point is near, crumbs smaller
+than 20 points' worth of area, or closed cavities inside the solid (which no scanner sees: the
+inside of an opening narrower than a point spacing, closed over); --trim D keeps only the surface within D of the points (an open
 scan's own surface, not what closes it).
 
 Clouds: .ply (ASCII or binary, with or without nx ny nz), .npy (N × 3 or N × 6), .xyz or .txt
@@ -218,7 +219,9 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             resolution,
             match bubbles {
                 0 => String::new(),
-                n => format!(" ({n} bubble(s) away from every point dropped)"),
+                n => format!(
+                    " ({n} piece(s) the scan cannot show dropped: bubbles away from every point, crumbs, closed cavities)"
+                ),
             },
             crate::common::surface_topology(&r, "open"),
             start.elapsed().as_secs_f64(),

@@ -20,10 +20,14 @@ const CRUMB_POINTS: f64 = 20.0;
 
 /// The pieces of `mesh` that the scan supports: those with at least half their vertices within
 /// `reach` of a scan point, wider than twice the reach and larger than the area 20 of the
-/// points stand for (finer than that, the scan cannot show a piece). An implicit surface
-/// fitted to a scan may close small bubbles far from every
-/// point (where nothing constrains f); no scanned surface lies there. Returns the kept mesh and
-/// how many pieces were dropped; the largest piece is always kept.
+/// points stand for (finer than that, the scan cannot show a piece), and that face outward
+/// (enclose a positive volume). An implicit surface fitted to a scan may close small bubbles
+/// far from every point (where nothing constrains f); no scanned surface lies there. And a
+/// piece that faces inward is a closed cavity inside the solid, which no scanner sees from
+/// outside: the points on it were seen through an opening narrower than the surface could
+/// follow, which closed over (a simulated cow scan's mouth, its lips closer than the points'
+/// spacing, left its inside as a cavity, a second piece); the solid is kept whole. Returns the
+/// kept mesh and how many pieces were dropped; the largest piece is always kept.
 ///
 /// ```
 /// use rbf_convert::supported_pieces;
@@ -47,7 +51,7 @@ pub fn supported_pieces(
     }
     let distances = distances_to_cloud(points, mesh.positions());
     let crumb = CRUMB_POINTS * area(mesh, 0..mesh.triangles().len()) / points.len().max(1) as f64;
-    keep_pieces(mesh, reach, crumb, |v| distances[v as usize] <= reach)
+    keep_pieces(mesh, reach, crumb, true, |v| distances[v as usize] <= reach)
 }
 
 /// The area of the triangles `which` of `mesh`.
@@ -59,11 +63,13 @@ fn area(mesh: &TriMesh, which: impl IntoIterator<Item = usize>) -> f64 {
 }
 
 /// `mesh` without the pieces (but the largest) that have fewer than half their vertices `near`,
-/// are no wider than twice `reach` or have less area than `crumb`, and how many were dropped.
+/// are no wider than twice `reach`, have less area than `crumb` or, where `closed`, face
+/// inward; and how many were dropped.
 fn keep_pieces(
     mesh: &TriMesh,
     reach: f64,
     crumb: f64,
+    closed: bool,
     near: impl Fn(u32) -> bool,
 ) -> Result<(TriMesh, usize), MeshError> {
     let pieces = mesh.components();
@@ -84,10 +90,13 @@ fn keep_pieces(
             }
         }
         let width = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
-        let shown = supported as f64 >= SUPPORTED_SHARE * vertices.len() as f64
-            && width > 2.0 * reach
-            && area(mesh, piece.iter().copied()) >= crumb;
-        if i == 0 || shown {
+        let shown = || -> Result<bool, MeshError> {
+            Ok(supported as f64 >= SUPPORTED_SHARE * vertices.len() as f64
+                && width > 2.0 * reach
+                && area(mesh, piece.iter().copied()) >= crumb
+                && !(closed && mesh.with_triangles(piece)?.volume() < 0.0))
+        };
+        if i == 0 || shown()? {
             keep.extend_from_slice(piece);
         } else {
             dropped += 1;
@@ -208,7 +217,7 @@ pub fn trimmed(mesh: &TriMesh, points: &[[f64; 3]], distance: f64) -> Result<Tri
     // Every corner left is within the distance of a point: only the crumbs' size decides.
     let cut = mesh.with_triangles(&keep)?;
     let crumb = CRUMB_POINTS * area(&cut, 0..cut.triangles().len()) / points.len().max(1) as f64;
-    Ok(keep_pieces(&cut, distance, crumb, |_| true)?.0)
+    Ok(keep_pieces(&cut, distance, crumb, false, |_| true)?.0)
 }
 
 #[cfg(test)]
@@ -243,6 +252,38 @@ mod tests {
             "{median} against {allowed}"
         );
         assert!(ninth <= 2.0 * allowed, "{ninth} against {allowed}");
+    }
+
+    /// A closed cavity inside the solid (a sphere within a sphere, facing inward), every vertex
+    /// of it on a scan point: dropped, the solid kept whole. The same sphere facing outward (a
+    /// separate piece, an object inside a hollow one) is kept.
+    #[test]
+    fn a_closed_cavity_is_dropped_and_an_outward_piece_kept() {
+        let sphere = TriMesh::icosphere(4);
+        let inner = |facing_in: bool| {
+            let mut positions = sphere.positions().to_vec();
+            let at = positions.len() as u32;
+            positions.extend(sphere.positions().iter().map(|p| p.map(|c| 0.5 * c)));
+            let mut triangles = sphere.triangles().to_vec();
+            triangles.extend(sphere.triangles().iter().map(|&[a, b, c]| {
+                let t = [a + at, b + at, c + at];
+                if facing_in { [t[0], t[2], t[1]] } else { t }
+            }));
+            TriMesh::new(positions, triangles).unwrap()
+        };
+        let cavity = inner(true);
+        assert!(cavity.volume() < sphere.volume());
+        let points = cavity.positions().to_vec();
+        let (kept, dropped) = supported_pieces(&cavity, &points, 0.001).unwrap();
+        assert_eq!(dropped, 1);
+        assert_eq!(kept.triangles().len(), sphere.triangles().len());
+        assert!(kept.volume() > 0.0);
+        let nested = inner(false);
+        let (kept, dropped) = supported_pieces(&nested, &points, 0.001).unwrap();
+        assert_eq!(
+            (dropped, kept.triangles().len()),
+            (0, nested.triangles().len())
+        );
     }
 
     /// A crumb beside the surface, wider than twice the reach and every vertex of it on a scan
