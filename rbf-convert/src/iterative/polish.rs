@@ -41,12 +41,14 @@ pub(crate) fn corrections(
             })
         })
         .collect();
-    // Mesh vertices far from the surface: put the surface through them.
+    // Mesh vertices far from the surface (a finely cut mesh's sampled): put the surface
+    // through them.
     let surface_tree = WindingTree::new(surface);
-    let missed: Vec<(f64, Constraint<3>)> = mesh
-        .positions()
+    let vertices = super::topology::sampled_vertices(mesh, voxel, |_| 0);
+    let missed: Vec<(f64, Constraint<3>)> = vertices
         .par_iter()
-        .filter_map(|&p| {
+        .map(|&v| mesh.positions()[v])
+        .filter_map(|p| {
             let d = surface_tree
                 .closest_point(p, reach)
                 .map_or(reach, |(_, d)| d);
