@@ -118,9 +118,8 @@ const FINELY_CUT: f64 = 4.0;
 /// four times finer (1.12·10⁶ triangles instead of 7·10⁴, 23 vertices to a voxel's area
 /// instead of 1.4) was probed from every vertex in 12.9 s instead of 1.1 s, its 1706 probes
 /// (523 from the coarse mesh) took a third of the loop's 4000 constraints, and it was
-/// converted in 49 s to an RMS distance of 0.30 voxel; sampled, in 30 s to 0.16. The corpus's
-/// own meshes are cut at most 1.8 vertices to a voxel's area, but the hammer (5.3) and the
-/// sword (12).
+/// converted in 49 s to a loop RMS of 0.30 voxel; sampled, in 31 s to 0.16. Of the corpus's
+/// meshes only the hammer (5.3) and the sword (12) are cut that finely; the others at most 1.8.
 pub(crate) fn sampled_vertices(
     mesh: &TriMesh,
     voxel: f64,
