@@ -24,7 +24,7 @@ use goal::{Goal, summary};
 use polish::corrections;
 pub use settings::IterativeSettings;
 pub use topology::TopologyReport;
-use topology::{fixes, measure, thin_probes};
+use topology::{fixes, measure, sampled_vertices, thin_probes};
 
 use crate::ConvertError;
 
@@ -150,6 +150,7 @@ pub fn convert_iterative(
         );
         // Polish: pull back where the surface strays from the mesh itself, while that keeps
         // every probe satisfied.
+        let checked_vertices = sampled_vertices(mesh, goal.h, |_| 0);
         for _ in 0..POLISH_ROUNDS {
             let (Some(s), Some(tree)) = (&surface, goal.tree()) else {
                 break;
@@ -157,7 +158,7 @@ pub fn convert_iterative(
             let room = settings
                 .max_constraints
                 .saturating_sub(model.constraints.len());
-            let extra = corrections(mesh, tree, s, &model.constraints, goal.h);
+            let extra = corrections(mesh, &checked_vertices, tree, s, &model.constraints, goal.h);
             if extra.is_empty() || room == 0 {
                 break;
             }

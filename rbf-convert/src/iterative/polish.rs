@@ -14,10 +14,12 @@ use rbf_mesh::{TriMesh, WindingTree};
 /// Distance, in voxels, beyond which a point counts as astray.
 pub(crate) const FAR: f64 = 1.0;
 
-/// Constraints that pull the surface back where it strays from the mesh, no two within a
+/// Constraints that pull the surface back where it strays from the mesh (checked at its
+/// `vertices`, indices into it: every one, or a finely cut mesh's sample), no two within a
 /// voxel of each other or of an existing constraint.
 pub(crate) fn corrections(
     mesh: &TriMesh,
+    vertices: &[usize],
     tree: &WindingTree,
     surface: &TriMesh,
     constraints: &[Constraint<3>],
@@ -41,10 +43,8 @@ pub(crate) fn corrections(
             })
         })
         .collect();
-    // Mesh vertices far from the surface (a finely cut mesh's sampled): put the surface
-    // through them.
+    // Mesh vertices far from the surface: put the surface through them.
     let surface_tree = WindingTree::new(surface);
-    let vertices = super::topology::sampled_vertices(mesh, voxel, |_| 0);
     let missed: Vec<(f64, Constraint<3>)> = vertices
         .par_iter()
         .map(|&v| mesh.positions()[v])

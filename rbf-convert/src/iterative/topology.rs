@@ -99,11 +99,10 @@ pub(crate) fn thin_probes(
             })
         })
         .collect();
-    let mut grid = std::collections::HashSet::new();
-    let key = |p: [f64; 3]| p.map(|c| (c / spacing).floor() as i64);
-    found
+    let positions: Vec<[f64; 3]> = found.iter().map(|p| p.position).collect();
+    one_per_cube(&positions, spacing, |_| 0)
         .into_iter()
-        .filter(|p| grid.insert(key(p.position)))
+        .map(|i| found[i])
         .collect()
 }
 
