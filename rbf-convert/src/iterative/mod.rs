@@ -330,7 +330,21 @@ fn refine_to_goal<const D: usize>(
         if better {
             report.best = iteration;
         }
-        if better || max_error < lowest_max || rms_error < 0.99 * lowest_rms {
+        // Probes to add: all of them, unless they would take more than half the room left;
+        // then a share of the constraints there are (at least as many as the loop starts
+        // with), spread evenly. A mesh thin everywhere (a bowl's wall) has a probe at nearly
+        // every vertex, and taken at once they filled the budget in the first iterations,
+        // before the loop had placed its own constraints. While probes wait, the loop has not
+        // stalled.
+        let room = settings.max_constraints.saturating_sub(constraints.len());
+        let share = if fixes.len() > room / 2 {
+            let share = (settings.max_growth * constraints.len() as f64).ceil() as usize;
+            share.max(settings.initial_constraints)
+        } else {
+            fixes.len()
+        };
+        let waiting = fixes.len() > share;
+        if better || max_error < lowest_max || rms_error < 0.99 * lowest_rms || waiting {
             since_progress = 0;
         } else {
             since_progress += 1;
@@ -345,9 +359,9 @@ fn refine_to_goal<const D: usize>(
         let (violated_probes, added) = if done {
             (0, 0)
         } else {
-            let room = settings.max_constraints.saturating_sub(constraints.len());
-            let probes = fixes.len().min(room);
-            constraints.extend(fixes.into_iter().take(probes));
+            let fixes = spread_out(fixes, room.min(share));
+            let probes = fixes.len();
+            constraints.extend(fixes);
             // Once the errors are within their targets, only the probes are added.
             let refined = if within {
                 0
@@ -422,6 +436,42 @@ fn settle_far_field<const D: usize>(
     model
 }
 
+/// At most `count` of `constraints`, spread evenly: one in each cube of a lattice coarse enough
+/// to hold no more (the first in each), all of them if they are few enough.
+fn spread_out<const D: usize>(constraints: Vec<Constraint<D>>, count: usize) -> Vec<Constraint<D>> {
+    if constraints.len() <= count {
+        return constraints;
+    }
+    let positions: Vec<[f64; 3]> = constraints
+        .iter()
+        .map(|c| core::array::from_fn(|d| if d < D { c.position[d] } else { 0.0 }))
+        .collect();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in &positions {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    let extent = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    let mut cube = extent / 1024.0;
+    loop {
+        let chosen = topology::one_per_cube(&positions, cube, |_| 0);
+        if chosen.len() <= count || !(cube < extent) {
+            let mut keep = vec![false; constraints.len()];
+            for &i in chosen.iter().take(count) {
+                keep[i] = true;
+            }
+            return constraints
+                .into_iter()
+                .zip(keep)
+                .filter_map(|(c, k)| k.then_some(c))
+                .collect();
+        }
+        cube *= 1.25;
+    }
+}
+
 /// How the loop ranks its models, best first: those close to the mesh (a maximum error within
 /// twice the target) that leave no probe violated; then every other by its maximum error, the
 /// probes it violates, and its RMS error. A model that keeps the topology but misses the mesh
@@ -445,5 +495,27 @@ impl Rank {
             violations,
             rms_error,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::spread_out;
+    use rbf_core::Constraint;
+
+    #[test]
+    fn spread_out_keeps_at_most_the_count_and_covers_the_whole_extent() {
+        // 1000 points crowded at one end of a segment, 10 spread over the rest.
+        let crowded = (0..1000).map(|i| [i as f64 * 1e-4, 0.0, 0.0]);
+        let spread = (1..=10).map(|i| [i as f64, 0.0, 0.0]);
+        let all: Vec<Constraint<3>> = crowded.chain(spread).map(Constraint::boundary).collect();
+        assert_eq!(spread_out(all.clone(), 2000).len(), all.len());
+        let kept = spread_out(all, 20);
+        assert!(kept.len() <= 20 && kept.len() >= 10, "{}", kept.len());
+        // Every one of the far points keeps its own cube: the crowd does not take the count.
+        for i in 1..=10 {
+            assert!(kept.iter().any(|c| c.position[0] == i as f64), "{i}");
+        }
+        assert!(spread_out(Vec::<Constraint<3>>::new(), 0).is_empty());
     }
 }
