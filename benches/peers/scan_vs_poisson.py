@@ -2,7 +2,8 @@
 """Scans to surfaces: `rbf reconstruct` beside Open3D's screened Poisson pipeline (and
 pymeshlab's, when installed), on the same simulated scans, in one sitting.
 
-Each scan is made from a closed mesh of ../shared/data/meshes, seeded (`--seed`, 11 by
+Each scan is made from a closed mesh of ../shared/data/meshes (or of the folder in the
+environment variable MESHES_DIR: `benches/thin_meshes.py` makes one), seeded (`--seed`, 11 by
 default) and repeatable:
 
 - N points spread by area with an uneven density (a smooth random field over the object makes
@@ -50,7 +51,7 @@ from scipy.spatial import cKDTree
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.dirname(os.path.dirname(here))
-meshes_dir = os.path.join(root, "..", "shared", "data", "meshes")
+meshes_dir = os.environ.get("MESHES_DIR") or os.path.join(root, "..", "shared", "data", "meshes")
 rbf = os.environ.get("RBF", os.path.join(root, "target", "release", "rbf"))
 DEFAULT_MESHES = ["bunny_small", "spot", "cow", "knot", "torus", "koala"]
 

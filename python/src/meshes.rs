@@ -4,8 +4,8 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rbf_convert::{
-    ConvertError, IterativeSettings, NormalSettings, ReconstructSettings, convert_iterative,
-    convert_normals, mesh_resolution, reconstruct, scan_mesh, trimmed,
+    ConvertError, IterativeSettings, NormalSettings, ReconstructSettings, ScanSurface,
+    convert_iterative, convert_normals, mesh_resolution, scan_surface, trimmed,
 };
 use rbf_core::NormalOffset;
 use rbf_mesh::{TriMesh, VoxelMethod, VoxelSettings, signed_distance, voxelize};
@@ -256,9 +256,13 @@ pub(crate) fn _reconstruct<'py>(
         .transpose()?;
     let (model, report, mesh, resolution, bubbles) = py
         .detach(|| {
-            let (model, report) = reconstruct(&positions, normals.as_deref(), &settings)?;
             let resolution = resolution.unwrap_or_else(|| mesh_resolution(&positions));
-            let (mesh, bubbles) = scan_mesh(&model, &report, &positions, resolution)?;
+            let ScanSurface {
+                model,
+                report,
+                mesh,
+                dropped: bubbles,
+            } = scan_surface(&positions, normals.as_deref(), &settings, Some(resolution))?;
             let mesh = match trim {
                 Some(d) => trimmed(&mesh, &positions, d)?,
                 None => mesh,
@@ -277,6 +281,7 @@ pub(crate) fn _reconstruct<'py>(
     d.set_item("refuted", report.refuted)?;
     d.set_item("reversed_by_winding", report.reversed_by_winding)?;
     d.set_item("reversed_by_sight", report.reversed_by_sight)?;
+    d.set_item("looked_again", report.looked_again)?;
     d.set_item("disagreeing", report.disagreeing)?;
     d.set_item("contradicted", report.contradicted)?;
     d.set_item("pieces", report.pieces)?;

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
-use rbf_convert::{ReconstructSettings, reconstruct};
+use rbf_convert::{ReconstructSettings, ScanSurface, scan_surface};
 use rbf_mesh::{PointCloud, write_mesh};
 
 use crate::common::{read_text, spinner, write_atomically};
@@ -29,7 +29,8 @@ wrong way through where it touches the body, and it turns), then voted on by coa
 them (in the first round only), and the patches are cut and judged again (up to three
 rounds); a lone normal against neighbours that agree is turned to them; last, lines of sight:
 where the scan stops rays along a normal (most of a cone about it) and rays against it leave
-the box, it turns (a thin blade's two sheets facing the same way). Normals more than 60°
+the box, it turns (a thin blade's two sheets facing the same way; on a clean scan only in a
+second attempt, made when the first mesh comes out open). Normals more than 60°
 from their neighbours' are left out. Each inside point of a normal constraint goes only as deep as it stays nearest
 its own point, so that thin walls are not pierced. An even spread of
 the points then carries normal constraints in one smoothing fit (λ, --smoothing): on a clean
@@ -142,18 +143,25 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
     if let Some(n) = args.max_centres {
         settings = settings.with_max_centres(n);
     }
-    let bar = spinner(quiet, format!("{}: reconstructing", points.len()));
-    let result = reconstruct(&points, normals.as_deref(), &settings);
-    bar.finish_and_clear();
-    let (model, report) = result.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
     let resolution = args
         .resolution
         .unwrap_or_else(|| rbf_convert::mesh_resolution(&points));
-    let bar = spinner(quiet, format!("polygonizing at {resolution}"));
+    let bar = spinner(
+        quiet,
+        format!(
+            "{}: reconstructing, polygonizing at {resolution}",
+            points.len()
+        ),
+    );
     // Bubbles that no scanned point is near are not part of the scanned surface.
-    let meshed = rbf_convert::scan_mesh(&model, &report, &points, resolution);
+    let result = scan_surface(&points, normals.as_deref(), &settings, Some(resolution));
     bar.finish_and_clear();
-    let (mesh, bubbles) = meshed.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
+    let ScanSurface {
+        model,
+        report,
+        mesh,
+        dropped: bubbles,
+    } = result.map_err(|e| Failure::new(BAD_INPUT, format!("{source}: {e}")))?;
     let mesh = match args.trim {
         Some(d) => rbf_convert::trimmed(&mesh, &points, d).map_err(|e| {
             Failure::new(
@@ -174,7 +182,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.beyond_tolerance
         );
         eprintln!(
-            "{} points read, {}{} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} by lines of sight, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {}{} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} by lines of sight{}, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             if report.duplicates > 0 {
                 format!("{} repeated and ", report.duplicates)
@@ -196,6 +204,11 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.reversed_by_winding,
             report.refuted,
             report.reversed_by_sight,
+            if report.looked_again {
+                " (a second attempt: the first mesh was open)"
+            } else {
+                ""
+            },
             report.disagreeing,
             report.pieces,
             report.noise,

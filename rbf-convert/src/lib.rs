@@ -46,6 +46,6 @@ pub use normals::{NormalReport, NormalSettings, convert_normals};
 #[doc(hidden)]
 pub use poisson::poisson_subset;
 pub use scans::{
-    LARGEST_COORDINATE, ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct,
-    scan_mesh, smoothing_for_noise, supported_pieces, trimmed,
+    LARGEST_COORDINATE, ReconstructReport, ReconstructSettings, ScanSurface, mesh_resolution,
+    reconstruct, scan_mesh, scan_surface, smoothing_for_noise, supported_pieces, trimmed,
 };

@@ -1,7 +1,9 @@
 //! Scans to surfaces: clouds without normals (or with some flipped) become closed surfaces of
 //! the right topology near the points; flat, tiny and hopelessly noisy clouds are refused.
 
-use rbf_convert::{ConvertError, ReconstructSettings, mesh_resolution, reconstruct, scan_mesh};
+use rbf_convert::{
+    ConvertError, ReconstructSettings, mesh_resolution, reconstruct, scan_mesh, scan_surface,
+};
 use rbf_mesh::{
     PolygonizeSettings, Resolution, polygonize_continuation, read_mesh, sample_surface,
     surface_seeds,
@@ -83,6 +85,31 @@ fn a_torus_without_normals_comes_out_closed_with_its_hole() {
     let f = model.interpolant.view();
     assert!(f.value(&[1.0, 0.0, 0.0]) > 0.0, "inside the tube");
     assert!(f.value(&[0.0, 0.0, 0.0]) < 0.0, "the hole is outside");
+}
+
+/// A clean scan's normals are checked by lines of sight only when asked (`sight`), which
+/// `scan_surface` asks for in a second attempt when the first mesh comes out open; asked, they
+/// turn nothing on a torus whose normals are right, and the surface is the same closed torus.
+#[test]
+fn lines_of_sight_on_a_clean_scan_only_when_asked() {
+    let (points, _) = torus(4000);
+    let plain = scan_surface(&points, None, &ReconstructSettings::default(), Some(48)).unwrap();
+    assert!(!plain.report.sight && !plain.report.looked_again);
+    assert_eq!(plain.report.reversed_by_sight, 0);
+    let asked = ReconstructSettings {
+        sight: true,
+        ..Default::default()
+    };
+    let sighted = scan_surface(&points, None, &asked, Some(48)).unwrap();
+    assert!(sighted.report.sight && !sighted.report.looked_again);
+    assert_eq!(sighted.report.reversed_by_sight, 0);
+    for scan in [&plain, &sighted] {
+        let r = scan.mesh.check();
+        assert!(
+            r.is_watertight() && r.genus == Some(1) && r.components == 1,
+            "{r:?}"
+        );
+    }
 }
 
 /// A clean scan of a detailed object keeps its crevices open: 30 000 points spread evenly over

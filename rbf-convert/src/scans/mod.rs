@@ -10,9 +10,11 @@ mod patches;
 mod reconstruct;
 mod sight;
 mod support;
+mod surface;
 
 pub use reconstruct::{
     LARGEST_COORDINATE, ReconstructReport, ReconstructSettings, mesh_resolution, reconstruct,
     smoothing_for_noise,
 };
 pub use support::{scan_mesh, supported_pieces, trimmed};
+pub use surface::{ScanSurface, scan_surface};

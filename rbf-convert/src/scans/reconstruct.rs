@@ -92,6 +92,11 @@ pub struct ReconstructSettings {
     /// has: 10⁴ lost F-score at 0.5 % on detailed meshes (Nefertiti 0.9994 → 0.9983, the boot
     /// 0.9922 → 0.9891, the goat head 0.9935 → 0.9928); 2·10⁴ took twice the time of 10⁴.
     pub clean_centres: usize,
+    /// Check a clean scan's normals by lines of sight too, as a noisy scan's always are
+    /// ([`super::sight`]). Off by default: on the clean scans of the corpus its turns changed
+    /// little but the genus of a boat and a sword, and the sword's time tripled. [`scan_surface`]
+    /// turns it on for a second attempt when the first mesh comes out open.
+    pub sight: bool,
 }
 
 impl Default for ReconstructSettings {
@@ -106,6 +111,7 @@ impl Default for ReconstructSettings {
             smoothing: None,
             smoothed_centres: 10_000,
             clean_centres: 15_000,
+            sight: false,
         }
     }
 }
@@ -165,6 +171,12 @@ pub struct ReconstructReport {
     /// inward: the scan stops the rays along it, and the rays against it leave the scan's box
     /// (last, after the other checks; see [`super::sight`]).
     pub reversed_by_sight: usize,
+    /// Whether the normals were checked by lines of sight (a noisy scan, or
+    /// [`ReconstructSettings::sight`]).
+    pub sight: bool,
+    /// Whether the normals were oriented again with lines of sight because the first mesh came
+    /// out open ([`scan_surface`]).
+    pub looked_again: bool,
     /// Points left out of the constraints because their normal is more than 60° from the
     /// mean of their neighbours'.
     pub disagreeing: usize,
@@ -504,7 +516,8 @@ pub fn reconstruct(
     // they leave is then few enough for the votes (see [`LOOKS`]).
     let mut lone_turned = 0;
     let mut reversed_by_sight = 0;
-    for look in 0..if noisy { LOOKS } else { 0 } {
+    let sight = noisy || settings.sight;
+    for look in 0..if sight { LOOKS } else { 0 } {
         if look > 0 {
             refuted += vote(&mut spread_normals)?;
             reversed_by_winding += super::patches::flip_patches(
@@ -677,6 +690,8 @@ pub fn reconstruct(
         refuted,
         reversed_by_winding,
         reversed_by_sight,
+        sight,
+        looked_again: false,
         disagreeing,
         contradicted: report.contradicted,
         beyond_tolerance,
