@@ -339,12 +339,13 @@ fn refine_to_goal<const D: usize>(
         let room = settings.max_constraints.saturating_sub(constraints.len());
         let share = if fixes.len() > room / 2 {
             let share = (settings.max_growth * constraints.len() as f64).ceil() as usize;
-            share.max(settings.initial_constraints)
+            share.max(settings.initial_constraints).min(room / 2)
         } else {
             fixes.len()
         };
         let waiting = fixes.len() > share;
-        if better || max_error < lowest_max || rms_error < 0.99 * lowest_rms || waiting {
+        let progressed = better || max_error < lowest_max || rms_error < 0.99 * lowest_rms;
+        if progressed || waiting {
             since_progress = 0;
         } else {
             since_progress += 1;
@@ -366,7 +367,7 @@ fn refine_to_goal<const D: usize>(
             let refined = if within {
                 0
             } else {
-                goal.refine(&errors, &mut constraints, settings, since_progress > 0)
+                goal.refine(&errors, &mut constraints, settings, !progressed)
             };
             (probes, probes + refined)
         };
@@ -437,7 +438,8 @@ fn settle_far_field<const D: usize>(
 }
 
 /// At most `count` of `constraints`, spread evenly: one in each cube of a lattice coarse enough
-/// to hold no more (the first in each), all of them if they are few enough.
+/// to hold no more (the first in each; often fewer than `count`, as each coarsening by a
+/// quarter empties many cubes), all of them if they are few enough.
 fn spread_out<const D: usize>(constraints: Vec<Constraint<D>>, count: usize) -> Vec<Constraint<D>> {
     if constraints.len() <= count {
         return constraints;
@@ -454,7 +456,7 @@ fn spread_out<const D: usize>(constraints: Vec<Constraint<D>>, count: usize) -> 
         }
     }
     let extent = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
-    let mut cube = extent / 1024.0;
+    let mut cube = (extent / 1024.0).max(f64::MIN_POSITIVE);
     loop {
         let chosen = topology::one_per_cube(&positions, cube, |_| 0);
         if chosen.len() <= count || !(cube < extent) {

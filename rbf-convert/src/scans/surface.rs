@@ -25,9 +25,9 @@ pub struct ScanSurface {
 /// show ([`scan_mesh`]). A clean scan's normals are not checked by lines of sight; if its mesh
 /// then comes out open (f positive out to the box: the normals of a part the winding numbers
 /// cannot judge, such as a plate a few point spacings thick whose two sides came out facing
-/// the same way) or f is not negative around the scan, the scan is reconstructed again with
-/// them ([`ReconstructSettings::sight`], [`ReconstructReport::looked_again`]), and the second
-/// attempt is kept if its mesh is closed.
+/// the same way), the scan is reconstructed again with them ([`ReconstructSettings::sight`]),
+/// and the second attempt is kept if its mesh is closed ([`ReconstructReport::looked_again`]);
+/// if it is not, or it fails, the first is returned as it was.
 ///
 /// ```
 /// use rbf_convert::{ReconstructSettings, scan_surface};
@@ -58,28 +58,19 @@ pub fn scan_surface(
             dropped,
         })
     };
-    let first = attempt(settings);
+    let scan = attempt(settings)?;
+    if scan.report.sight || scan.mesh.check().is_watertight() {
+        return Ok(scan);
+    }
     let sighted = ReconstructSettings {
         sight: true,
         ..*settings
     };
-    match first {
-        Ok(scan) if scan.report.sight || scan.mesh.check().is_watertight() => Ok(scan),
-        Ok(scan) => match attempt(&sighted) {
-            Ok(again) if again.mesh.check().is_watertight() => Ok(looked_again(again)),
-            _ => Ok(scan),
-        },
-        Err(ConvertError::NotClosed { at, value }) if !settings.sight => {
-            attempt(&sighted).map(looked_again).map_err(|e| match e {
-                ConvertError::NotClosed { .. } => ConvertError::NotClosed { at, value },
-                other => other,
-            })
+    match attempt(&sighted) {
+        Ok(mut again) if again.mesh.check().is_watertight() => {
+            again.report.looked_again = true;
+            Ok(again)
         }
-        Err(e) => Err(e),
+        _ => Ok(scan),
     }
-}
-
-fn looked_again(mut scan: ScanSurface) -> ScanSurface {
-    scan.report.looked_again = true;
-    scan
 }
