@@ -331,11 +331,11 @@ fn refine_to_goal<const D: usize>(
             report.best = iteration;
         }
         // Probes to add: all of them, unless they would take more than half the room left;
-        // then a share of the constraints there are (at least as many as the loop starts
-        // with), spread evenly. A mesh thin everywhere (a bowl's wall) has a probe at nearly
-        // every vertex, and taken at once they filled the budget in the first iterations,
-        // before the loop had placed its own constraints. While probes wait, the loop has not
-        // stalled.
+        // then at most a share of the constraints there are (at least as many as the loop
+        // starts with, at most half the room), spread evenly. A mesh thin everywhere (a bowl's
+        // wall) has a probe at nearly every vertex, and taken at once they filled the budget
+        // in the first iterations, before the loop had placed its own constraints. While
+        // probes wait, patience counts no stall (the refinement still hears of one).
         let room = settings.max_constraints.saturating_sub(constraints.len());
         let share = if fixes.len() > room / 2 {
             let share = (settings.max_growth * constraints.len() as f64).ceil() as usize;
