@@ -5,7 +5,9 @@
 - bowl: a spherical shell (radius 0.9, wall 0.012: 0.85 voxel at 128) cut open at z = 0.5;
 - plate4: a plate 0.02 thick (1.3 voxels) with four round holes: genus 4;
 - pretzel: three overlapping rings of tubes 0.06 thick, in a row;
-- fin: a disc 0.012 thick (0.73 voxel) through a ball.
+- fin: a disc 0.012 thick (0.73 voxel) through a ball;
+- skull: a spherical shell (radius 0.9, wall 0.03: 2 voxels) with three round openings, two in
+  front and one below, as a skull's bony shell has: genus 2.
 
 Each is marching cubes of its distance function on a lattice of 400 along x (scikit-image),
 decimated to 60 000 triangles (trimesh with fast_simplification). Benchmark tools only:
@@ -70,6 +72,16 @@ def main():
     disc = np.minimum(1.0 - np.sqrt(x * x + y * y), 0.006 - np.abs(z))
     ball = 0.3 - np.sqrt(x * x + y * y + z * z)
     save(out, "fin", np.maximum(disc, ball), step, lo)
+
+    (x, y, z), step, lo = lattice([-1.05] * 3, [1.05] * 3)
+    p = np.stack([x, y, z], axis=-1)
+    shell = 0.015 - np.abs(np.linalg.norm(p, axis=-1) - 0.9)
+    for axis in ([0.55, 0.0, 0.83], [-0.55, 0.0, 0.83], [0.0, -1.0, 0.0]):
+        a = np.array(axis) / np.linalg.norm(axis)
+        along = p @ a
+        across = np.linalg.norm(p - along[..., None] * a, axis=-1)
+        shell = np.minimum(shell, np.maximum(across - 0.25, -along))
+    save(out, "skull", shell, step, lo)
 
 
 if __name__ == "__main__":

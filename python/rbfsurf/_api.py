@@ -229,7 +229,8 @@ def reconstruct(
     (``duplicates``) and outliers dropped, normals
     estimated and flipped (``reversed_by_winding``: by the winding number of the others;
     ``refuted``: reversed by fits; ``reversed_by_sight``: by lines of sight, on a clean scan
-    only in a second attempt, made when the first mesh came out open: ``looked_again``;
+    only in a second attempt, made when the first fit strayed outside nearly everywhere or its
+    mesh came out open: ``looked_again``;
     ``disagreeing``: left out), noise,
     centres, ``lambda`` (0 for a greedy fit), outside constraints added, ``bubbles_dropped`` (pieces the scan cannot show),
     watertight, genus, components).

@@ -30,7 +30,8 @@ them (in the first round only), and the patches are cut and judged again (up to 
 rounds); a lone normal against neighbours that agree is turned to them; last, lines of sight:
 where the scan stops rays along a normal (most of a cone about it) and rays against it leave
 the box, it turns (a thin blade's two sheets facing the same way; on a clean scan only in a
-second attempt, made when the first mesh comes out open). Normals more than 60°
+second attempt, made when the first fit still strays outside nearly everywhere after a round
+of outside constraints, or its mesh comes out open). Normals more than 60°
 from their neighbours' are left out. Each inside point of a normal constraint goes only as deep as it stays nearest
 its own point, so that thin walls are not pierced. An even spread of
 the points then carries normal constraints in one smoothing fit (λ, --smoothing): on a clean
@@ -205,7 +206,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.refuted,
             report.reversed_by_sight,
             if report.looked_again {
-                " (a second attempt: the first mesh was open)"
+                " (a second attempt: the first fit was open)"
             } else {
                 ""
             },

@@ -1,5 +1,6 @@
 //! A scan's closed surface, start to end: the model ([`reconstruct`]) and its mesh
-//! ([`scan_mesh`]), with a second attempt when the first mesh comes out open.
+//! ([`scan_mesh`]), with a second attempt when the first mesh comes out open (the model
+//! itself may already have made one: [`ReconstructReport::looked_again`]).
 
 use rbf_core::Model;
 use rbf_mesh::TriMesh;
