@@ -122,6 +122,14 @@ pub(crate) fn _convert<'py>(
                 report.set_item("components", t.components)?;
                 report.set_item("topology_kept", t.agrees())?;
             }
+            // Where the loop fell short, its rival (normal constraints at the vertices) was
+            // measured too; kept, its errors are the model's.
+            if let Some(rival) = r.rival {
+                report.set_item("rival_kept", rival.kept)?;
+                report.set_item("rival_vertices", rival.vertices)?;
+                report.set_item("rival_max_error_voxels", rival.max_error)?;
+                report.set_item("rival_rms_error_voxels", rival.rms_error)?;
+            }
             model
         }
         other => {

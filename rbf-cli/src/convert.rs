@@ -25,7 +25,11 @@ For a closed mesh its topology is then kept: the voxel error cannot see gaps or 
 than a voxel, so the middle of every gap and part narrower than two voxels is probed, probes on
 the wrong side of the surface become exterior or interior constraints, and the surface is
 fitted again; the summary line ends with the genus and components of the result against the
-mesh's (--keep-topology false skips this).
+mesh's (--keep-topology false skips this). Where the loop falls short (a topology other than
+the mesh's, or a surface more than two voxels off: a shell a couple of voxels thick, such as a
+skull's), its rival is fitted too: normal constraints at an even spread of the vertices, as many
+rows as --max-constraints, each inside point kept within thin walls. It is measured the same way
+and written instead if it ranks better (the summary line says so).
 
 --method normals (Turk & O'Brien, §4.3): every vertex becomes a boundary constraint with a normal
 constraint a small distance inside, against the vertex normal; meshes with more vertices than
@@ -199,8 +203,36 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                     .best
                     .saturating_sub(1)
                     .min(report.iterations.len() - 1)];
+                let the_loop = format!(
+                    "best of {} iterations: {}: max error {:.2} voxels, RMS {:.2}, {} boundary / {} interior / {} exterior constraints",
+                    report.iterations.len(),
+                    best.iteration,
+                    best.max_error,
+                    best.rms_error,
+                    best.boundary,
+                    best.interior,
+                    best.exterior,
+                );
+                let kept = match report.rival {
+                    Some(r) if r.kept => format!(
+                        "the loop fell short ({the_loop}); kept its rival, normal constraints at {} vertices: max error {:.2} voxels, RMS {:.2}",
+                        r.vertices, r.max_error, r.rms_error
+                    ),
+                    Some(r) => format!(
+                        "{the_loop} (its rival, normal constraints at {} vertices, ranked lower: max error {:.2} voxels, RMS {:.2}, {})",
+                        r.vertices,
+                        r.max_error,
+                        r.rms_error,
+                        match r.topology {
+                            Some((Some(g), c)) => format!("genus {g}, {c} component(s)"),
+                            Some((None, _)) => "not closed".to_string(),
+                            None => "its topology not measured".to_string(),
+                        }
+                    ),
+                    None => the_loop,
+                };
                 eprintln!(
-                    "{} × {} × {} voxels{}; best of {} iterations: {}: max error {:.2} voxels, RMS {:.2}, {} boundary / {} interior / {} exterior constraints{}; {:.1} s; wrote {}",
+                    "{} × {} × {} voxels{}; {kept}{}; {:.1} s; wrote {}",
                     report.shape[0],
                     report.shape[1],
                     report.shape[2],
@@ -209,13 +241,6 @@ pub(crate) fn run(args: &ConvertArgs, quiet: bool, verbose: bool) -> Result<(), 
                     } else {
                         " (not watertight: winding numbers)"
                     },
-                    report.iterations.len(),
-                    best.iteration,
-                    best.max_error,
-                    best.rms_error,
-                    best.boundary,
-                    best.interior,
-                    best.exterior,
                     report
                         .topology
                         .map_or(String::new(), |t| topology_summary(&t)),
@@ -289,6 +314,14 @@ fn report_json(report: &IterativeReport) -> String {
             "added": t.added,
             "polished": t.polished,
             "seconds": t.seconds,
+        })),
+        "rival": report.rival.map(|r| serde_json::json!({
+            "vertices": r.vertices,
+            "max_error_voxels": r.max_error,
+            "rms_error_voxels": r.rms_error,
+            "genus": r.topology.and_then(|t| t.0),
+            "components": r.topology.map(|t| t.1),
+            "kept": r.kept,
         })),
     })
     .to_string()

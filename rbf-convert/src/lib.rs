@@ -39,8 +39,8 @@ pub use blend::{BlendReport, blend};
 pub use compare::{CompareSettings, DistanceStats, SurfaceDistance, surface_distance};
 pub use error::ConvertError;
 pub use iterative::{
-    IterationReport, IterativeReport, IterativeSettings, TopologyReport, convert_iterative,
-    convert_iterative_2d,
+    IterationReport, IterativeReport, IterativeSettings, RivalReport, TopologyReport,
+    convert_iterative, convert_iterative_2d,
 };
 pub use normals::{NormalReport, NormalSettings, convert_normals};
 #[doc(hidden)]

@@ -249,11 +249,51 @@ fn a_bowl_with_a_wall_under_a_voxel_is_not_given_up_to_its_probes() {
     let (model, report) = convert_iterative(&mesh, &settings, |_, _| {}).unwrap();
     let t = report.topology.unwrap();
     assert!(t.probes > settings.max_constraints, "{t:?}");
+    // The loop's own best model (its rival, normal constraints at the vertices, may be kept
+    // instead where the loop falls short: here it is, 1.0 voxel off with the bowl's genus).
     let best = &report.iterations[report.best - 1];
     assert!(best.max_error <= 2.0, "{best:?}");
-    assert!(model.constraints.len() > settings.max_constraints / 2);
+    assert!(best.boundary + best.interior + best.exterior > settings.max_constraints / 2);
     // Inside the wall, and outside both in the bowl and under it.
     assert!(model.interpolant.value(&[0.0, 0.0, -0.9]) > 0.0);
     assert!(model.interpolant.value(&[0.0, 0.0, -0.6]) < 0.0);
     assert!(model.interpolant.value(&[0.0, 0.0, -1.2]) < 0.0);
+}
+
+#[test]
+fn a_shell_two_voxels_thick_that_the_loop_cannot_hold_goes_to_its_rival() {
+    // A bowl's wall of 0.116 against voxels of 1.9 / 32 = 0.059: two voxels, just too thick
+    // for the thin-part probes. The loop's best model (1.7 voxels off, 1000 constraints) has
+    // a topology other than the bowl's; normal constraints at the vertices, their inside
+    // points kept within the wall, hold both sides.
+    let mesh = bowl(0.9, 0.116, 0.5, 96, 40);
+    let r = mesh.check();
+    assert!(r.is_watertight() && r.genus == Some(0), "{r:?}");
+    let settings = IterativeSettings {
+        resolution: 32,
+        max_constraints: 1000,
+        ..Default::default()
+    };
+    let (model, report) = convert_iterative(&mesh, &settings, |_, _| {}).unwrap();
+    let rival = report.rival.expect("the loop falls short");
+    assert!(rival.kept, "{rival:?} {:?}", report.topology);
+    let t = report.topology.unwrap();
+    assert!(t.agrees(), "{t:?}");
+    assert!(rival.max_error <= 2.0, "{rival:?}");
+    let rows: usize = model
+        .constraints
+        .iter()
+        .map(|c| {
+            if c.kind == rbf_core::ConstraintKind::Normal {
+                2
+            } else {
+                1
+            }
+        })
+        .sum();
+    assert!(rows <= settings.max_constraints, "{rows}");
+    // Inside the wall, and outside both in the bowl and under it.
+    assert!(model.interpolant.value(&[0.0, 0.0, -0.9]) > 0.0);
+    assert!(model.interpolant.value(&[0.0, 0.0, -0.75]) < 0.0);
+    assert!(model.interpolant.value(&[0.0, 0.0, -1.05]) < 0.0);
 }
