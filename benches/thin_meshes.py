@@ -14,7 +14,7 @@ decimated to 60 000 triangles (trimesh with fast_simplification). Benchmark tool
 
     python3 -m pip install numpy scikit-image trimesh fast_simplification
     python3 benches/thin_meshes.py OUT_DIR
-    python3 benches/corpus.py --meshes OUT_DIR bowl plate4 pretzel fin
+    python3 benches/corpus.py --meshes OUT_DIR bowl plate4 pretzel fin skull
 """
 import os
 import sys

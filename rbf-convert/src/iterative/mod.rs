@@ -170,50 +170,50 @@ pub fn convert_iterative(
             max_error: best.max_error,
             rms_error: best.rms_error,
         };
-        if !loop_standing.close || loop_standing.topology > 0 {
-            if let Ok(rival) = rival_model(
+        if (!loop_standing.close || loop_standing.topology > 0)
+            && let Ok(rival) = rival_model(
                 mesh,
                 (RIVAL_SHARE * settings.max_constraints as f64 / 2.0) as usize,
-            ) {
-                let rival = settle_far_field(&goal, rival, settings, check);
-                let inside = goal.evaluate(&rival.interpolant.view(), settings);
-                let (max_error, rms_error) = summary(&goal.errors(&inside));
-                let standing = |topology: u64| Standing {
-                    close: close(max_error),
-                    topology,
-                    max_error,
-                    rms_error,
-                };
-                let vertices = (rival.constraints.iter())
-                    .filter(|c| c.kind == ConstraintKind::Normal)
-                    .count();
-                // Its topology is measured only if it could win with the mesh's (the measure
-                // is most of the rival's time: 10 s of 13 on the skull-like shell).
-                let measured = standing(0)
-                    .beats(&loop_standing)
-                    .then(|| measure(mesh, &checked, &rival, &probes, goal.h, 0, 0.0).0);
-                let kept = measured
-                    .as_ref()
-                    .is_some_and(|t| standing(t.difference()).beats(&loop_standing));
-                report.rival = Some(RivalReport {
-                    vertices,
-                    max_error,
-                    rms_error,
-                    topology: measured.map(|t| (t.genus, t.components)),
-                    kept,
-                });
-                if let Some(t) = measured {
-                    topology.seconds += t.seconds;
-                    if kept {
-                        topology = TopologyReport {
-                            seconds: topology.seconds,
-                            added: 0,
-                            ..t
-                        };
-                        model = rival;
-                        // Not polished (see [`RIVAL_SHARE`]).
-                        surface = None;
-                    }
+            )
+        {
+            let rival = settle_far_field(&goal, rival, settings, check);
+            let inside = goal.evaluate(&rival.interpolant.view(), settings);
+            let (max_error, rms_error) = summary(&goal.errors(&inside));
+            let standing = |topology: u64| Standing {
+                close: close(max_error),
+                topology,
+                max_error,
+                rms_error,
+            };
+            let vertices = (rival.constraints.iter())
+                .filter(|c| c.kind == ConstraintKind::Normal)
+                .count();
+            // Its topology is measured only if it could win with the mesh's (the measure
+            // is most of the rival's time: 10 s of 13 on the skull-like shell).
+            let measured = standing(0)
+                .beats(&loop_standing)
+                .then(|| measure(mesh, &checked, &rival, &probes, goal.h, 0, 0.0).0);
+            let kept = measured
+                .as_ref()
+                .is_some_and(|t| standing(t.difference()).beats(&loop_standing));
+            report.rival = Some(RivalReport {
+                vertices,
+                max_error,
+                rms_error,
+                topology: measured.map(|t| (t.genus, t.components)),
+                kept,
+            });
+            if let Some(t) = measured {
+                topology.seconds += t.seconds;
+                if kept {
+                    topology = TopologyReport {
+                        seconds: topology.seconds,
+                        added: 0,
+                        ..t
+                    };
+                    model = rival;
+                    // Not polished (see [`RIVAL_SHARE`]).
+                    surface = None;
                 }
             }
         }
