@@ -195,9 +195,10 @@ def convert(
 
     ``method="iterative"`` (Yngve & Turk 2002): voxelize at ``resolution`` voxels along the
     longest side, fit, measure the two-way error, add constraints where it is largest, repeat
-    (at most ``max_constraints``, default 4000, and ``max_iterations``); where that falls short
-    of the mesh's topology or ends more than two voxels off, normal constraints at the vertices
-    are fitted too and kept if they rank better (``rival_kept`` in the report). ``method="normals"``:
+    (at most ``max_constraints``, default 4000, and ``max_iterations``); on a closed mesh, where
+    that falls short of its topology or ends more than two voxels off, normal constraints at the
+    vertices are fitted too and kept if they rank better (``rival_kept`` in the report, whose
+    ``max_error_voxels`` and ``rms_error_voxels`` are then theirs). ``method="normals"``:
     a normal constraint at every vertex (``max_constraints`` thins them evenly), ``offset`` a
     fraction of the box. With ``return_report``, also a dict of the conversion's figures.
     """

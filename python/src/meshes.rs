@@ -123,8 +123,15 @@ pub(crate) fn _convert<'py>(
                 report.set_item("topology_kept", t.agrees())?;
             }
             // Where the loop fell short, its rival (normal constraints at the vertices) was
-            // measured too; kept, its errors are the model's.
+            // measured too; kept, its errors are the model's (the loop's stay in
+            // `best_iteration`'s figures, `loop_*`).
             if let Some(rival) = r.rival {
+                if rival.kept {
+                    report.set_item("loop_max_error_voxels", best.max_error)?;
+                    report.set_item("loop_rms_error_voxels", best.rms_error)?;
+                    report.set_item("max_error_voxels", rival.max_error)?;
+                    report.set_item("rms_error_voxels", rival.rms_error)?;
+                }
                 report.set_item("rival_kept", rival.kept)?;
                 report.set_item("rival_vertices", rival.vertices)?;
                 report.set_item("rival_max_error_voxels", rival.max_error)?;

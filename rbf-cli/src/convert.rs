@@ -27,8 +27,8 @@ the wrong side of the surface become exterior or interior constraints, and the s
 fitted again; the summary line ends with the genus and components of the result against the
 mesh's (--keep-topology false skips this). Where the loop falls short (a topology other than
 the mesh's, or a surface more than two voxels off: a shell a couple of voxels thick, such as a
-skull's), its rival is fitted too: normal constraints at an even spread of the vertices, as many
-rows as --max-constraints, each inside point kept within thin walls. It is measured the same way
+skull's), its rival is fitted too: normal constraints at an even spread of the vertices, 98 % of
+the rows of --max-constraints, each inside point kept within thin walls. It is measured the same way
 and written instead if it ranks better (the summary line says so).
 
 --method normals (Turk & O'Brien, §4.3): every vertex becomes a boundary constraint with a normal

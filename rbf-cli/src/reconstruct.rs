@@ -206,7 +206,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.refuted,
             report.reversed_by_sight,
             if report.looked_again {
-                " (a second attempt: the first fit was open)"
+                " (a second attempt with lines of sight: the first fit strayed out, or its mesh was open)"
             } else {
                 ""
             },

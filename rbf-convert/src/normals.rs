@@ -54,6 +54,26 @@ pub struct NormalReport {
     pub fit: rbf_core::FitReport,
 }
 
+/// Which vertices of `mesh` its triangles use.
+fn used_vertices(mesh: &TriMesh) -> Vec<bool> {
+    let mut used = vec![false; mesh.positions().len()];
+    for t in mesh.triangles() {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    used
+}
+
+/// The vertices its triangles use whose `normals` are finite and not zero.
+pub(crate) fn vertices_with_normals(mesh: &TriMesh, normals: &[[f64; 3]]) -> Vec<usize> {
+    let used = used_vertices(mesh);
+    (0..used.len())
+        .filter(|&v| used[v] && normals[v].iter().all(|c| c.is_finite()))
+        .filter(|&v| normals[v].iter().any(|&c| c != 0.0))
+        .collect()
+}
+
 /// Converts a mesh to an interpolating implicit surface through its vertices, with normal
 /// constraints against the vertex normals, fitted with rbf-solve (`progress` hears the fit's
 /// reports; the greedy choice reports nothing).
@@ -63,16 +83,8 @@ pub fn convert_normals(
     progress: impl FnMut(rbf_solve::FitProgress),
 ) -> Result<(Model<3>, NormalReport), ConvertError> {
     let normals = mesh.vertex_normals();
-    let mut used = vec![false; mesh.positions().len()];
-    for t in mesh.triangles() {
-        for &v in t {
-            used[v as usize] = true;
-        }
-    }
-    let candidates: Vec<usize> = (0..used.len())
-        .filter(|&v| used[v] && normals[v].iter().any(|&c| c != 0.0))
-        .collect();
-    let vertices = used.iter().filter(|&&u| u).count();
+    let candidates = vertices_with_normals(mesh, &normals);
+    let vertices = used_vertices(mesh).iter().filter(|&&u| u).count();
     if candidates.is_empty() {
         return Err(ConvertError::NoNormals);
     }

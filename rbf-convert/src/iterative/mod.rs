@@ -85,7 +85,8 @@ pub struct IterativeReport {
     pub watertight: bool,
     /// Every iteration run, in order (the first has `iteration` 1).
     pub iterations: Vec<IterationReport>,
-    /// The iteration whose model is returned (lowest maximum, then RMS error).
+    /// The loop's best iteration (see the ranking, `Rank`): its model is returned unless the
+    /// rival was kept (`rival`).
     pub best: usize,
     /// For a closed mesh with [`IterativeSettings::keep_topology`]: the mesh's and the
     /// surface's genus and components, and the constraints added to keep them.
@@ -174,6 +175,7 @@ pub fn convert_iterative(
             && let Ok(rival) = rival_model(
                 mesh,
                 (RIVAL_SHARE * settings.max_constraints as f64 / 2.0) as usize,
+                settings.lambda,
             )
         {
             let rival = settle_far_field(&goal, rival, settings, check);
@@ -507,19 +509,10 @@ fn settle_far_field<const D: usize>(
     model
 }
 
-/// Rows of the system `constraints` make: two for a normal constraint (the rival's), one for
-/// any other. The budget counts rows.
+/// Rows of the system `constraints` make (a normal constraint, the rival's, takes two): the
+/// budget counts rows.
 fn rows<const D: usize>(constraints: &[Constraint<D>]) -> usize {
-    constraints
-        .iter()
-        .map(|c| {
-            if c.kind == ConstraintKind::Normal {
-                2
-            } else {
-                1
-            }
-        })
-        .sum()
+    constraints.iter().map(Constraint::rows).sum()
 }
 
 /// At most `count` of `constraints`, spread evenly: one in each cube of a lattice coarse enough
@@ -585,7 +578,8 @@ struct Standing {
 impl Standing {
     /// Whether this model is to be kept instead of `other`. Both close: the smaller topological
     /// difference, then the smaller maximum error, then RMS. Otherwise only a model no worse
-    /// in any of closeness, topology and maximum error, and better in one: ranked by its
+    /// in any of closeness, topology and maximum error, and better in one (or, tied in all
+    /// three, in RMS): ranked by its
     /// maximum error alone, a rival 2.85 voxels off with genus 22 beat the sword's loop, 2.9
     /// voxels off with its genus; ranked by topology first, one 5 voxels off (17.7 to the mesh)
     /// beat a bowl's loop 2.8 off with two extra handles.

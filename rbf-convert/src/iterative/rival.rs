@@ -25,7 +25,7 @@ const OFFSET: f64 = 0.01;
 pub struct RivalReport {
     /// Vertices that carry its normal constraints (two rows each).
     pub vertices: usize,
-    /// Its largest and RMS voxel error, measured as the loop's models are.
+    /// Its largest voxel error, measured as the loop's models are.
     pub max_error: f64,
     /// RMS of the same errors, in voxels.
     pub rms_error: f64,
@@ -36,20 +36,25 @@ pub struct RivalReport {
     pub kept: bool,
 }
 
+/// The fewest vertices a rival is fitted on.
+const FEWEST_VERTICES: usize = 4;
+
 /// The rival model of `mesh`: normal constraints at an even spread of at most `vertices` of
-/// its vertices, fitted exactly.
-pub(crate) fn rival_model(mesh: &TriMesh, vertices: usize) -> Result<Model<3>, ConvertError> {
-    let normals = mesh.vertex_normals();
-    let mut used = vec![false; mesh.positions().len()];
-    for t in mesh.triangles() {
-        for &v in t {
-            used[v as usize] = true;
-        }
+/// its vertices, fitted with the regularization `lambda`; an error for fewer than
+/// [`FEWEST_VERTICES`].
+pub(crate) fn rival_model(
+    mesh: &TriMesh,
+    vertices: usize,
+    lambda: f64,
+) -> Result<Model<3>, ConvertError> {
+    if vertices < FEWEST_VERTICES {
+        return Err(ConvertError::TooFewPoints {
+            points: vertices,
+            needed: FEWEST_VERTICES,
+        });
     }
-    let candidates: Vec<usize> = (0..used.len())
-        .filter(|&v| used[v] && normals[v].iter().all(|c| c.is_finite()))
-        .filter(|&v| normals[v].iter().any(|&c| c != 0.0))
-        .collect();
+    let normals = mesh.vertex_normals();
+    let candidates = crate::normals::vertices_with_normals(mesh, &normals);
     if candidates.is_empty() {
         return Err(ConvertError::NoNormals);
     }
@@ -61,7 +66,7 @@ pub(crate) fn rival_model(mesh: &TriMesh, vertices: usize) -> Result<Model<3>, C
     let (lo, hi) = crate::poisson::bounds(&points);
     let longest = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
     let distance = OFFSET * longest;
-    let chosen = poisson_subset(&points, vertices.max(1));
+    let chosen = poisson_subset(&points, vertices);
     // Cleared against every vertex, not only the chosen: the other side of a thin wall is
     // sampled as finely as the mesh is.
     let clear = clear_offsets(&points, &units, distance);
@@ -76,6 +81,7 @@ pub(crate) fn rival_model(mesh: &TriMesh, vertices: usize) -> Result<Model<3>, C
         .collect();
     let settings = FitSettings {
         normal_offset: NormalOffset::Absolute(distance),
+        lambda,
         ..Default::default()
     };
     let fit = rbf_solve::fit(&constraints, &settings)?;

@@ -647,16 +647,17 @@ pub fn reconstruct(
             .filter(|&i| !added[i] && !(values[i] < 0.0))
             .collect();
         // A clean scan whose probes still stray by the quarter after a round of outside
-        // constraints has wrong normals, not a bulge: it is fitted again with lines of sight.
+        // constraints has wrong normals, not a bulge: it is fitted again with lines of sight
+        // (and where that fails, this fit goes on).
         if round == 1 && !sight && strayed.len() as f64 > STILL_STRAYING * at.len() as f64 {
             let sighted = ReconstructSettings {
                 sight: true,
                 ..*settings
             };
-            return reconstruct(points, normals, &sighted).map(|(model, mut report)| {
+            if let Ok((model, mut report)) = reconstruct(points, normals, &sighted) {
                 report.looked_again = true;
-                (model, report)
-            });
+                return Ok((model, report));
+            }
         }
         if strayed.is_empty() {
             break;
