@@ -161,8 +161,9 @@ pub fn convert_iterative(
             probe_seconds,
         );
         // Where the loop fell short (a topology other than the mesh's, or a surface more than
-        // two voxels off), its rival: normal constraints at the mesh's vertices, with as many
-        // rows as the budget, measured the same way and kept (unpolished) if it ranks better.
+        // two voxels off), its rival: normal constraints at the mesh's vertices, with nearly
+        // as many rows as the budget ([`RIVAL_SHARE`]), measured the same way and kept
+        // (unpolished) if it stands better.
         let best = &report.iterations[report.best.saturating_sub(1)];
         let close = |max: f64| max <= CLOSE * settings.target_error;
         let loop_standing = Standing {
