@@ -42,7 +42,7 @@ pub use polygonize::{
     polygonize_continuation, polygonize_grid, surface_extent, surface_seeds,
 };
 pub use queries::{
-    DipoleTree, WindingTree, dipole_winding_numbers, sample_surface, winding_numbers,
+    DipoleTree, WindingTree, closest_on_triangle, dipole_winding_numbers, sample_surface, winding_numbers,
     winding_numbers_exact,
 };
 pub use volumes::{

@@ -27,7 +27,7 @@ pub use rival::RivalReport;
 use rival::rival_model;
 pub use settings::IterativeSettings;
 pub use topology::TopologyReport;
-use topology::{fixes, measure, sampled_vertices, thin_probes};
+use topology::{fixes, measure, sampled_vertices, surface_near, thin_probes};
 
 use crate::ConvertError;
 
@@ -42,6 +42,10 @@ const PROBE_REFITS: usize = 3;
 /// constraints far out). Not polished: with 3000 rows and 853 corrections, the skull of
 /// `benches/thin_meshes.py` came out 4.9 voxels off instead of 2.9, in 55 s instead of 24.
 const RIVAL_SHARE: f64 = 0.98;
+
+/// The topology measure's cube, in voxels, below which a polishing round's surface is
+/// polygonized for it at half a voxel instead (the measure then follows the last round only).
+const NEAR_CELL: f64 = 0.4;
 
 /// Rounds of [`settle_far_field`].
 const FAR_ROUNDS: usize = 4;
@@ -221,20 +225,25 @@ pub fn convert_iterative(
             }
         }
         // Polish: pull back where the surface strays from the mesh itself, while that keeps
-        // every probe satisfied.
+        // every probe satisfied. Each round's corrections come from a polygonization of the
+        // model before it: the topology measure's, or where that is finer than [`NEAR_CELL`],
+        // one at half a voxel found from the last (a third of the samples or fewer), the
+        // topology then measured only after the last round.
         let checked_vertices = sampled_vertices(mesh, goal.h, |_| 0);
-        for _ in 0..POLISH_ROUNDS {
+        let mut rounds: Vec<(Model<3>, Option<TopologyReport>)> = Vec::new();
+        for round in 1..=POLISH_ROUNDS {
             let (Some(s), Some(tree)) = (&surface, goal.tree()) else {
                 break;
             };
+            let last = rounds.last().map_or(&model, |(m, _)| m);
             let room = settings
                 .max_constraints
-                .saturating_sub(rows(&model.constraints));
-            let extra = corrections(mesh, &checked_vertices, tree, s, &model.constraints, goal.h);
+                .saturating_sub(rows(&last.constraints));
+            let extra = corrections(mesh, &checked_vertices, tree, s, &last.constraints, goal.h);
             if extra.is_empty() || room == 0 {
                 break;
             }
-            let mut constraints = model.constraints.clone();
+            let mut constraints = last.constraints.clone();
             constraints.extend(extra.into_iter().take(room));
             // Corrections can push the surface across a probe: those probes join as constraints
             // (as in the loop), a few times, before the round is given up.
@@ -252,7 +261,7 @@ pub fn convert_iterative(
             }
             // A polish that turns f positive far outside is given up.
             let far = |f: &Interpolant<f64, 3>| !goal.far_field_fixes(&f.view()).is_empty();
-            if violated > 0 || (far(&fit.interpolant) && !far(&model.interpolant)) {
+            if violated > 0 || (far(&fit.interpolant) && !far(&last.interpolant)) {
                 break;
             }
             let polished = Model {
@@ -261,18 +270,37 @@ pub fn convert_iterative(
                 report: Some(fit.report),
                 ..model.clone()
             };
-            let (t, s) = measure(mesh, &checked, &polished, &probes, goal.h, added, 0.0);
-            // A round may trade one topological difference for another, never add one.
-            if t.difference() > topology.difference() {
+            if round == POLISH_ROUNDS || topology.cell >= NEAR_CELL * goal.h {
+                let (t, next) = measure(mesh, &checked, &polished, &probes, goal.h, added, 0.0);
+                topology.seconds += t.seconds;
+                rounds.push((polished, Some(t)));
+                surface = next;
+                // A round may trade one topological difference for another, never add one.
+                if t.difference() > topology.difference() {
+                    break;
+                }
+            } else {
+                let seeds: Vec<[f64; 3]> = s.positions().iter().step_by(8).copied().collect();
+                surface = surface_near(&polished, 0.5 * goal.h, &seeds);
+                rounds.push((polished, None));
+            }
+        }
+        // The last round that adds no topological difference, measured if it was not.
+        while let Some((polished, measured)) = rounds.pop() {
+            let t = measured.unwrap_or_else(|| {
+                let (t, _) = measure(mesh, &checked, &polished, &probes, goal.h, added, 0.0);
+                topology.seconds += t.seconds;
+                t
+            });
+            if t.difference() <= topology.difference() {
+                topology = TopologyReport {
+                    seconds: topology.seconds,
+                    polished: polished.constraints.len() - model.constraints.len(),
+                    ..t
+                };
+                model = polished;
                 break;
             }
-            topology = TopologyReport {
-                seconds: topology.seconds + t.seconds,
-                polished: topology.polished + polished.constraints.len() - model.constraints.len(),
-                ..t
-            };
-            model = polished;
-            surface = s;
         }
         report.topology = Some(topology);
     }

@@ -340,7 +340,8 @@ fn surface_topology(
     // constraint, such as a stray blob).
     let mut seeds = rbf_mesh::surface_seeds(model);
     let coarse = PolygonizeSettings {
-        resolution: Resolution::CellSize(voxel),
+        resolution: Resolution::CellSize(2.0 * voxel),
+        root_iterations: 0,
         ..Default::default()
     };
     if let Ok((mesh, _)) = rbf_mesh::polygonize_grid(&f, &coarse) {
@@ -353,6 +354,22 @@ fn surface_topology(
         }
         Err(_) => (None, 0, None),
     }
+}
+
+/// The model's surface polygonized at `cell` by continuation from its boundary constraints and
+/// `seeds` only (without the search of the whole box that [`measure`] makes for stray pieces):
+/// for where it strays from the mesh, not for its topology.
+pub(crate) fn surface_near(model: &Model<3>, cell: f64, seeds: &[[f64; 3]]) -> Option<TriMesh> {
+    let settings = PolygonizeSettings {
+        resolution: Resolution::CellSize(cell),
+        root_iterations: 0,
+        ..Default::default()
+    };
+    let mut all = rbf_mesh::surface_seeds(model);
+    all.extend_from_slice(seeds);
+    polygonize_continuation(&model.interpolant.view(), &all, &settings)
+        .ok()
+        .map(|(mesh, _)| mesh)
 }
 
 #[cfg(test)]

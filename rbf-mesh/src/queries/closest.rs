@@ -6,7 +6,14 @@ use rbf_core::vec3::{dot, norm, sub};
 
 /// The point of triangle (a, b, c) nearest to p, by the Voronoi regions of its corners, edges
 /// and face (Ericson, Real-Time Collision Detection, §5.1.5).
-pub(crate) fn closest_on_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
+///
+/// ```
+/// let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+/// let q = rbf_mesh::closest_on_triangle([0.2, 0.3, 5.0], a, b, c);
+/// assert!((q[0] - 0.2).abs() < 1e-15 && (q[1] - 0.3).abs() < 1e-15 && q[2] == 0.0);
+/// assert_eq!(rbf_mesh::closest_on_triangle([2.0, -1.0, 0.0], a, b, c), b);
+/// ```
+pub fn closest_on_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
     let along = |o: [f64; 3], e: [f64; 3], t: f64| -> [f64; 3] {
         core::array::from_fn(|d| o[d] + t * e[d])
     };

@@ -7,6 +7,7 @@ mod dipoles;
 mod sample;
 mod winding;
 
+pub use closest::closest_on_triangle;
 pub use dipoles::{DipoleTree, dipole_winding_numbers};
 pub use sample::sample_surface;
 pub use winding::{WindingTree, winding_numbers, winding_numbers_exact};
