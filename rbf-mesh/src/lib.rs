@@ -42,8 +42,8 @@ pub use polygonize::{
     polygonize_continuation, polygonize_grid, surface_extent, surface_seeds,
 };
 pub use queries::{
-    DipoleTree, WindingTree, closest_on_triangle, dipole_winding_numbers, sample_surface, winding_numbers,
-    winding_numbers_exact,
+    DipoleTree, WindingTree, closest_on_triangle, dipole_winding_numbers, sample_surface,
+    winding_numbers, winding_numbers_exact,
 };
 pub use volumes::{
     MAX_SUPERSAMPLING, Volume, VoxelMethod, VoxelSettings, check_volume_size, classify_blocks,

@@ -12,7 +12,7 @@
 use std::time::Instant;
 
 use rbf_core::{Constraint, ConstraintKind, FitSettings, Interpolant, Model};
-use rbf_mesh::{TriMesh, Volume, VoxelSettings, WindingTree, voxelize};
+use rbf_mesh::{MeshReport, TriMesh, Volume, VoxelSettings, WindingTree, voxelize};
 
 mod goal;
 mod nearest;
@@ -22,21 +22,14 @@ mod settings;
 mod topology;
 
 use goal::{Goal, summary};
-use polish::corrections;
+use polish::{Polishing, polish_rounds};
 pub use rival::RivalReport;
 use rival::rival_model;
 pub use settings::IterativeSettings;
 pub use topology::TopologyReport;
-use topology::{fixes, measure, sampled_vertices, surface_near, thin_probes};
+use topology::{Probe, fixes, measure, measure_cell, surface_near, thin_probes};
 
 use crate::ConvertError;
-
-/// Rounds of pulling the surface back to the mesh after the loop.
-const POLISH_ROUNDS: usize = 2;
-
-/// Refits within a polishing round that add the probes its corrections pushed the surface
-/// across.
-const PROBE_REFITS: usize = 3;
 
 /// The share of the budget's rows the loop's rival takes: nearly all (the rest for exterior
 /// constraints far out). Not polished: with 3000 rows and 853 corrections, the skull of
@@ -149,162 +142,204 @@ pub fn convert_iterative(
     let check = |f: &Interpolant<f64, 3>, constraints: &[Constraint<3>]| {
         fixes(&f.view(), &probes, constraints, goal.h)
     };
-    let (mut model, mut report) = refine_to_goal(&goal, settings, watertight, check, progress)?;
-    if keep {
-        let added = report.iterations[..report.best.saturating_sub(1)]
-            .iter()
-            .map(|it| it.violated_probes)
-            .sum();
-        let (mut topology, mut surface) = measure(
-            mesh,
-            &checked,
-            &model,
-            &probes,
-            goal.h,
-            added,
-            probe_seconds,
-        );
-        // Where the loop fell short (a topology other than the mesh's, or a surface more than
-        // two voxels off), its rival: normal constraints at the mesh's vertices, with nearly
-        // as many rows as the budget ([`RIVAL_SHARE`]), measured the same way and kept
-        // (unpolished) if it stands better.
-        let best = &report.iterations[report.best.saturating_sub(1)];
-        let close = |max: f64| max <= CLOSE * settings.target_error;
-        let loop_standing = Standing {
-            close: close(best.max_error),
-            topology: topology.difference(),
-            max_error: best.max_error,
-            rms_error: best.rms_error,
+    let (model, mut report) = refine_to_goal(&goal, settings, watertight, check, progress)?;
+    if !keep {
+        return Ok((model, report));
+    }
+    let added = report.iterations[..report.best.saturating_sub(1)]
+        .iter()
+        .map(|it| it.violated_probes)
+        .sum();
+    let best = &report.iterations[report.best.saturating_sub(1)];
+    let after = AfterTheLoop {
+        mesh,
+        checked: &checked,
+        goal: &goal,
+        probes: &probes,
+        settings,
+        added,
+        loop_errors: (best.max_error, best.rms_error),
+    };
+    let (model, topology) = after.finish(model, probe_seconds, &mut report)?;
+    report.topology = Some(topology);
+    Ok((model, report))
+}
+
+/// What the stages after the loop share: the mesh and its check, the goal, the probes, and
+/// the loop's kept model's probes (`added`) and voxel errors (max, RMS).
+struct AfterTheLoop<'a> {
+    mesh: &'a TriMesh,
+    checked: &'a MeshReport,
+    goal: &'a Goal,
+    probes: &'a [Probe],
+    settings: &'a IterativeSettings,
+    added: usize,
+    loop_errors: (f64, f64),
+}
+
+impl AfterTheLoop<'_> {
+    /// The loop's model polished against the mesh, or its rival, and its topology.
+    ///
+    /// The loop's model is measured first (its topology decides whether the rival is tried),
+    /// unless it came close (within [`CLOSE`] times the target) with room left in the budget
+    /// and the measure's cubes are finer than [`NEAR_CELL`]: then it is polished first, the last round measured, and the
+    /// loop's model only if that round's topology is not the mesh's (on most meshes that
+    /// spares one measure, 4–6 s).
+    fn finish(
+        &self,
+        model: Model<3>,
+        probe_seconds: f64,
+        report: &mut IterativeReport,
+    ) -> Result<(Model<3>, TopologyReport), ConvertError> {
+        let h = self.goal.h;
+        let mut seconds = probe_seconds;
+        let cell = measure_cell(self.mesh, self.probes, h);
+        // (A model at the budget has no room for a polish: its surface would be wasted.)
+        let room = rows(&model.constraints) < self.settings.max_constraints;
+        let polish_first = room && self.close(self.loop_errors.0) && cell < NEAR_CELL * h;
+        let (mut loop_topology, surface) = if polish_first {
+            (None, surface_near(&model, 0.5 * h, &[]))
+        } else {
+            let (t, surface) = self.measure(&model, self.added, &mut seconds);
+            if let Some(kept) = self.rival(&t, &mut seconds, report) {
+                return Ok(self.with_seconds(kept, seconds));
+            }
+            (Some(t), surface)
         };
-        if (!loop_standing.close || loop_standing.topology > 0)
-            && let Ok(rival) = rival_model(
-                mesh,
-                (RIVAL_SHARE * settings.max_constraints as f64 / 2.0) as usize,
-                settings.lambda,
-            )
-        {
-            let rival = settle_far_field(&goal, rival, settings, check);
-            let inside = goal.evaluate(&rival.interpolant.view(), settings);
-            let (max_error, rms_error) = summary(&goal.errors(&inside));
-            let standing = |topology: u64| Standing {
-                close: close(max_error),
-                topology,
-                max_error,
-                rms_error,
+        let polishing = Polishing {
+            mesh: self.mesh,
+            checked: self.checked,
+            goal: self.goal,
+            probes: self.probes,
+            settings: self.settings,
+            added: self.added,
+            measure_each: cell >= NEAR_CELL * h,
+        };
+        let rounds = polish_rounds(&polishing, &model, surface, loop_topology.as_ref())?;
+        seconds += (rounds.iter())
+            .filter_map(|(_, t)| t.map(|t| t.seconds))
+            .sum::<f64>();
+        // The last measured round that adds no topological difference to the loop's (a round
+        // not measured is not measured now: that would cost the measure it was spared).
+        for (polished, measured) in rounds.into_iter().rev() {
+            let Some(t) = measured else {
+                continue;
             };
-            let vertices = (rival.constraints.iter())
-                .filter(|c| c.kind == ConstraintKind::Normal)
-                .count();
-            // Its topology is measured only if it could win with the mesh's (the measure
-            // is most of the rival's time: 10 s of 13 on the skull-like shell).
-            let measured = standing(0)
-                .beats(&loop_standing)
-                .then(|| measure(mesh, &checked, &rival, &probes, goal.h, 0, 0.0).0);
-            let kept = measured
-                .as_ref()
-                .is_some_and(|t| standing(t.difference()).beats(&loop_standing));
-            report.rival = Some(RivalReport {
-                vertices,
-                max_error,
-                rms_error,
-                topology: measured.map(|t| (t.genus, t.components)),
-                kept,
-            });
-            if let Some(t) = measured {
-                topology.seconds += t.seconds;
-                if kept {
-                    topology = TopologyReport {
-                        seconds: topology.seconds,
-                        added: 0,
-                        ..t
-                    };
-                    model = rival;
-                    // Not polished (see [`RIVAL_SHARE`]).
-                    surface = None;
+            if loop_topology.is_none() && t.difference() > 0 {
+                let (lt, _) = self.measure(&model, self.added, &mut seconds);
+                if let Some(kept) = self.rival(&lt, &mut seconds, report) {
+                    return Ok(self.with_seconds(kept, seconds));
                 }
+                loop_topology = Some(lt);
             }
-        }
-        // Polish: pull back where the surface strays from the mesh itself, while that keeps
-        // every probe satisfied. Each round's corrections come from a polygonization of the
-        // model before it: the topology measure's, or where that is finer than [`NEAR_CELL`],
-        // one at half a voxel found from the last (a third of the samples or fewer), the
-        // topology then measured only after the last round.
-        let checked_vertices = sampled_vertices(mesh, goal.h, |_| 0);
-        let mut rounds: Vec<(Model<3>, Option<TopologyReport>)> = Vec::new();
-        for round in 1..=POLISH_ROUNDS {
-            let (Some(s), Some(tree)) = (&surface, goal.tree()) else {
-                break;
-            };
-            let last = rounds.last().map_or(&model, |(m, _)| m);
-            let room = settings
-                .max_constraints
-                .saturating_sub(rows(&last.constraints));
-            let extra = corrections(mesh, &checked_vertices, tree, s, &last.constraints, goal.h);
-            if extra.is_empty() || room == 0 {
-                break;
-            }
-            let mut constraints = last.constraints.clone();
-            constraints.extend(extra.into_iter().take(room));
-            // Corrections can push the surface across a probe: those probes join as constraints
-            // (as in the loop), a few times, before the round is given up.
-            let mut fit = rbf_solve::fit(&constraints, &model.settings)?;
-            let mut violated = 0;
-            for _ in 0..PROBE_REFITS {
-                let (count, new) = fixes(&fit.interpolant.view(), &probes, &constraints, goal.h);
-                violated = count;
-                let room = settings.max_constraints.saturating_sub(rows(&constraints));
-                if count == 0 || new.is_empty() || new.len() > room {
-                    break;
-                }
-                constraints.extend(new);
-                fit = rbf_solve::fit(&constraints, &model.settings)?;
-            }
-            // A polish that turns f positive far outside is given up.
-            let far = |f: &Interpolant<f64, 3>| !goal.far_field_fixes(&f.view()).is_empty();
-            if violated > 0 || (far(&fit.interpolant) && !far(&last.interpolant)) {
-                break;
-            }
-            let polished = Model {
-                constraints,
-                interpolant: fit.interpolant,
-                report: Some(fit.report),
-                ..model.clone()
-            };
-            if round == POLISH_ROUNDS || topology.cell >= NEAR_CELL * goal.h {
-                let (t, next) = measure(mesh, &checked, &polished, &probes, goal.h, added, 0.0);
-                topology.seconds += t.seconds;
-                rounds.push((polished, Some(t)));
-                surface = next;
-                // A round may trade one topological difference for another, never add one.
-                if t.difference() > topology.difference() {
-                    break;
-                }
-            } else {
-                let seeds: Vec<[f64; 3]> = s.positions().iter().step_by(8).copied().collect();
-                surface = surface_near(&polished, 0.5 * goal.h, &seeds);
-                rounds.push((polished, None));
-            }
-        }
-        // The last round that adds no topological difference, measured if it was not.
-        while let Some((polished, measured)) = rounds.pop() {
-            let t = measured.unwrap_or_else(|| {
-                let (t, _) = measure(mesh, &checked, &polished, &probes, goal.h, added, 0.0);
-                topology.seconds += t.seconds;
-                t
-            });
-            if t.difference() <= topology.difference() {
-                topology = TopologyReport {
-                    seconds: topology.seconds,
-                    polished: polished.constraints.len() - model.constraints.len(),
+            if loop_topology.is_none_or(|l| t.difference() <= l.difference()) {
+                let polished_count = polished.constraints.len() - model.constraints.len();
+                let t = TopologyReport {
+                    polished: polished_count,
                     ..t
                 };
-                model = polished;
-                break;
+                return Ok(self.with_seconds((polished, t), seconds));
             }
         }
-        report.topology = Some(topology);
+        let t = match loop_topology {
+            Some(t) => t,
+            None => {
+                let (t, _) = self.measure(&model, self.added, &mut seconds);
+                if let Some(kept) = self.rival(&t, &mut seconds, report) {
+                    return Ok(self.with_seconds(kept, seconds));
+                }
+                t
+            }
+        };
+        Ok(self.with_seconds((model, t), seconds))
     }
-    Ok((model, report))
+
+    fn close(&self, max_error: f64) -> bool {
+        max_error <= CLOSE * self.settings.target_error
+    }
+
+    /// The model's topology and the polygonization that measured it, its seconds added.
+    fn measure(
+        &self,
+        model: &Model<3>,
+        added: usize,
+        seconds: &mut f64,
+    ) -> (TopologyReport, Option<TriMesh>) {
+        let (t, surface) = measure(
+            self.mesh,
+            self.checked,
+            model,
+            self.probes,
+            self.goal.h,
+            added,
+            0.0,
+        );
+        *seconds += t.seconds;
+        (t, surface)
+    }
+
+    fn with_seconds(
+        &self,
+        (model, t): (Model<3>, TopologyReport),
+        seconds: f64,
+    ) -> (Model<3>, TopologyReport) {
+        (model, TopologyReport { seconds, ..t })
+    }
+
+    /// Where the loop fell short (a topology other than the mesh's, `loop_topology`, or a
+    /// surface more than [`CLOSE`] times the target off), its rival: normal constraints at the
+    /// mesh's vertices, with nearly as many rows as the budget ([`RIVAL_SHARE`]), measured the
+    /// same way; returned, with its topology, if it stands better (it is not polished).
+    fn rival(
+        &self,
+        loop_topology: &TopologyReport,
+        seconds: &mut f64,
+        report: &mut IterativeReport,
+    ) -> Option<(Model<3>, TopologyReport)> {
+        let (goal, settings, h) = (self.goal, self.settings, self.goal.h);
+        let loop_standing = Standing {
+            close: self.close(self.loop_errors.0),
+            topology: loop_topology.difference(),
+            max_error: self.loop_errors.0,
+            rms_error: self.loop_errors.1,
+        };
+        if loop_standing.close && loop_standing.topology == 0 {
+            return None;
+        }
+        let share = (RIVAL_SHARE * settings.max_constraints as f64 / 2.0) as usize;
+        let rival = rival_model(self.mesh, share, settings.lambda).ok()?;
+        let check =
+            |f: &Interpolant<f64, 3>, c: &[Constraint<3>]| fixes(&f.view(), self.probes, c, h);
+        let rival = settle_far_field(goal, rival, settings, check);
+        let inside = goal.evaluate(&rival.interpolant.view(), settings);
+        let (max_error, rms_error) = summary(&goal.errors(&inside));
+        let standing = |topology: u64| Standing {
+            close: self.close(max_error),
+            topology,
+            max_error,
+            rms_error,
+        };
+        let vertices = (rival.constraints.iter())
+            .filter(|c| c.kind == ConstraintKind::Normal)
+            .count();
+        // Its topology is measured only if it could win with the mesh's (the measure is most
+        // of the rival's time: 10 s of 13 on the skull-like shell).
+        let measured = standing(0)
+            .beats(&loop_standing)
+            .then(|| self.measure(&rival, 0, seconds).0);
+        let kept = measured
+            .as_ref()
+            .is_some_and(|t| standing(t.difference()).beats(&loop_standing));
+        report.rival = Some(RivalReport {
+            vertices,
+            max_error,
+            rms_error,
+            topology: measured.map(|t| (t.genus, t.components)),
+            kept,
+        });
+        let t = measured.filter(|_| kept)?;
+        Some((rival, TopologyReport { added: 0, ..t }))
+    }
 }
 
 /// Converts a planar region, given by its inside test over the box `[lo, hi]`, to a curve by the

@@ -9,9 +9,109 @@
 
 use rayon::prelude::*;
 use rbf_cloud::PointTree;
-use rbf_core::Constraint;
 use rbf_core::vec3::{norm, sub};
-use rbf_mesh::{TriMesh, WindingTree, closest_on_triangle};
+use rbf_core::{Constraint, Interpolant, Model};
+use rbf_mesh::{MeshReport, TriMesh, WindingTree, closest_on_triangle};
+
+use super::goal::Goal;
+use super::topology::{Probe, TopologyReport, fixes, measure, sampled_vertices, surface_near};
+use super::{IterativeSettings, rows};
+use crate::ConvertError;
+
+/// Rounds of pulling the surface back to the mesh after the loop.
+const POLISH_ROUNDS: usize = 2;
+
+/// Refits within a polishing round that add the probes its corrections pushed the surface
+/// across.
+const PROBE_REFITS: usize = 3;
+
+/// What a polish works with: the mesh and its check, the goal, the probes, the probes among the
+/// loop's constraints (`added`, for the reports), and whether each round's topology is measured
+/// (and its surface taken from that measure) or a round's surface is polygonized at half a
+/// voxel and only the last round measured.
+pub(crate) struct Polishing<'a> {
+    pub(crate) mesh: &'a TriMesh,
+    pub(crate) checked: &'a MeshReport,
+    pub(crate) goal: &'a Goal,
+    pub(crate) probes: &'a [Probe],
+    pub(crate) settings: &'a IterativeSettings,
+    pub(crate) added: usize,
+    pub(crate) measure_each: bool,
+}
+
+/// A polishing round's model, with its topology where it was measured.
+pub(crate) type Round = (Model<3>, Option<TopologyReport>);
+
+/// Up to [`POLISH_ROUNDS`] rounds of pulling `model`'s surface (`surface`, its polygonization)
+/// back where it strays from the mesh, while that keeps every probe satisfied and f negative
+/// far out. Each round's corrections come from a polygonization of the model before it: the
+/// topology measure's where [`Polishing::measure_each`] says so (the last round is always
+/// measured), else one at half a voxel found from the round before's vertices. A measured
+/// round that moves the topology farther from the mesh's than `baseline` ends the polish.
+pub(crate) fn polish_rounds(
+    p: &Polishing,
+    model: &Model<3>,
+    mut surface: Option<TriMesh>,
+    baseline: Option<&TopologyReport>,
+) -> Result<Vec<Round>, ConvertError> {
+    let (goal, settings, h) = (p.goal, p.settings, p.goal.h);
+    let checked_vertices = sampled_vertices(p.mesh, h, |_| 0);
+    let mut rounds: Vec<Round> = Vec::new();
+    for round in 1..=POLISH_ROUNDS {
+        let (Some(s), Some(tree)) = (&surface, goal.tree()) else {
+            break;
+        };
+        let last = rounds.last().map_or(model, |(m, _)| m);
+        let room = settings
+            .max_constraints
+            .saturating_sub(rows(&last.constraints));
+        let extra = corrections(p.mesh, &checked_vertices, tree, s, &last.constraints, h);
+        if extra.is_empty() || room == 0 {
+            break;
+        }
+        let mut constraints = last.constraints.clone();
+        constraints.extend(extra.into_iter().take(room));
+        // Corrections can push the surface across a probe: those probes join as constraints
+        // (as in the loop), a few times, before the round is given up.
+        let mut fit = rbf_solve::fit(&constraints, &model.settings)?;
+        let mut violated = 0;
+        for _ in 0..PROBE_REFITS {
+            let (count, new) = fixes(&fit.interpolant.view(), p.probes, &constraints, h);
+            violated = count;
+            let room = settings.max_constraints.saturating_sub(rows(&constraints));
+            if count == 0 || new.is_empty() || new.len() > room {
+                break;
+            }
+            constraints.extend(new);
+            fit = rbf_solve::fit(&constraints, &model.settings)?;
+        }
+        // A polish that turns f positive far outside is given up.
+        let far = |f: &Interpolant<f64, 3>| !goal.far_field_fixes(&f.view()).is_empty();
+        if violated > 0 || (far(&fit.interpolant) && !far(&last.interpolant)) {
+            break;
+        }
+        let polished = Model {
+            constraints,
+            interpolant: fit.interpolant,
+            report: Some(fit.report),
+            ..model.clone()
+        };
+        if round == POLISH_ROUNDS || p.measure_each {
+            let (t, next) = measure(p.mesh, p.checked, &polished, p.probes, h, p.added, 0.0);
+            rounds.push((polished, Some(t)));
+            surface = next;
+            // A round may trade one topological difference for another, never add one.
+            if baseline.is_some_and(|b| t.difference() > b.difference()) {
+                break;
+            }
+        } else {
+            let seeds: Vec<[f64; 3]> = s.positions().iter().step_by(8).copied().collect();
+            surface = surface_near(&polished, 0.5 * h, &seeds);
+            rounds.push((polished, None));
+        }
+    }
+    Ok(rounds)
+}
 
 /// Distance, in voxels, beyond which a point counts as astray.
 pub(crate) const FAR: f64 = 1.0;
@@ -19,7 +119,7 @@ pub(crate) const FAR: f64 = 1.0;
 /// Constraints that pull the surface back where it strays from the mesh (checked at its
 /// `vertices`, indices into it: every one, or a finely cut mesh's sample), no two within a
 /// voxel of each other or of an existing constraint.
-pub(crate) fn corrections(
+fn corrections(
     mesh: &TriMesh,
     vertices: &[usize],
     tree: &WindingTree,
@@ -125,7 +225,11 @@ mod tests {
         for i in 0..200 {
             let t = i as f64 * 0.37;
             let r = 0.2 + 0.02 * i as f64;
-            let p = [r * t.cos() * t.sin(), r * t.sin() * (0.5 * t).cos(), r * (1.3 * t).cos()];
+            let p = [
+                r * t.cos() * t.sin(),
+                r * t.sin() * (0.5 * t).cos(),
+                r * (1.3 * t).cos(),
+            ];
             let (_, expected) = tree.closest_point(p, f64::INFINITY).unwrap();
             assert!((to.distance(p) - expected).abs() < 1e-12, "{p:?}");
         }

@@ -289,19 +289,7 @@ pub(crate) fn measure(
     seconds: f64,
 ) -> (TopologyReport, Option<TriMesh>) {
     let start = std::time::Instant::now();
-    // Half a voxel, or finer to put two cubes across the narrowest gap or part found (down to a
-    // quarter voxel), as long as the surface crosses at most MAX_CUBES cubes.
-    let narrowest = probes
-        .iter()
-        .map(|p| 2.0 * p.value.abs())
-        .fold(f64::INFINITY, f64::min);
-    let area: f64 = (0..mesh.triangles().len())
-        .map(|t| 0.5 * rbf_core::vec3::norm(mesh.area_vector(t)))
-        .sum();
-    let affordable = (area / MAX_CUBES).sqrt();
-    let cell = (0.5 * narrowest)
-        .clamp(0.25 * voxel, 0.5 * voxel)
-        .max(affordable.min(0.5 * voxel));
+    let cell = measure_cell(mesh, probes, voxel);
     let (genus, components, surface) = surface_topology(model, cell, voxel);
     let report = TopologyReport {
         goal_genus: checked.genus.unwrap_or(0),
@@ -315,6 +303,23 @@ pub(crate) fn measure(
         seconds: seconds + start.elapsed().as_secs_f64(),
     };
     (report, surface)
+}
+
+/// The cube of [`measure`]'s polygonization: half a voxel, or finer to put two cubes across the
+/// narrowest gap or part found (down to a quarter voxel), as long as the surface crosses at most
+/// [`MAX_CUBES`] cubes.
+pub(crate) fn measure_cell(mesh: &TriMesh, probes: &[Probe], voxel: f64) -> f64 {
+    let narrowest = probes
+        .iter()
+        .map(|p| 2.0 * p.value.abs())
+        .fold(f64::INFINITY, f64::min);
+    let area: f64 = (0..mesh.triangles().len())
+        .map(|t| 0.5 * rbf_core::vec3::norm(mesh.area_vector(t)))
+        .sum();
+    let affordable = (area / MAX_CUBES).sqrt();
+    (0.5 * narrowest)
+        .clamp(0.25 * voxel, 0.5 * voxel)
+        .max(affordable.min(0.5 * voxel))
 }
 
 /// Genus and components of the model's surface, polygonized by continuation from its boundary
