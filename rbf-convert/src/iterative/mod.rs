@@ -88,7 +88,8 @@ pub struct IterativeReport {
     /// For a closed mesh with [`IterativeSettings::keep_topology`]: the mesh's and the
     /// surface's genus and components, and the constraints added to keep them.
     pub topology: Option<TopologyReport>,
-    /// Where the loop fell short of its goals on a closed mesh: the rival it was measured
+    /// Where the loop fell short of its goals on a closed mesh (as measured: a close loop whose
+    /// polish reached the mesh's topology is not measured itself), the rival it was measured
     /// against (normal constraints at the mesh's vertices), and whether that was kept.
     pub rival: Option<RivalReport>,
 }
@@ -182,9 +183,11 @@ impl AfterTheLoop<'_> {
     ///
     /// The loop's model is measured first (its topology decides whether the rival is tried),
     /// unless it came close (within [`CLOSE`] times the target) with room left in the budget
-    /// and the measure's cubes are finer than [`NEAR_CELL`]: then it is polished first, the last round measured, and the
-    /// loop's model only if that round's topology is not the mesh's (on most meshes that
-    /// spares one measure, 4–6 s).
+    /// and the measure's cubes are finer than [`NEAR_CELL`]: then it is polished first and the
+    /// last round measured, and the loop's model is measured (and its rival tried, as it fell
+    /// short) only if that round's topology is not the mesh's or there was no round. On most
+    /// meshes that spares one measure, 4–6 s; a loop whose handles the polish closes is then
+    /// not measured, nor its rival tried.
     fn finish(
         &self,
         model: Model<3>,
@@ -202,7 +205,7 @@ impl AfterTheLoop<'_> {
         } else {
             let (t, surface) = self.measure(&model, self.added, &mut seconds);
             if let Some(kept) = self.rival(&t, &mut seconds, report) {
-                return Ok(self.with_seconds(kept, seconds));
+                return Ok(with_seconds(kept, seconds));
             }
             (Some(t), surface)
         };
@@ -228,7 +231,7 @@ impl AfterTheLoop<'_> {
             if loop_topology.is_none() && t.difference() > 0 {
                 let (lt, _) = self.measure(&model, self.added, &mut seconds);
                 if let Some(kept) = self.rival(&lt, &mut seconds, report) {
-                    return Ok(self.with_seconds(kept, seconds));
+                    return Ok(with_seconds(kept, seconds));
                 }
                 loop_topology = Some(lt);
             }
@@ -238,7 +241,7 @@ impl AfterTheLoop<'_> {
                     polished: polished_count,
                     ..t
                 };
-                return Ok(self.with_seconds((polished, t), seconds));
+                return Ok(with_seconds((polished, t), seconds));
             }
         }
         let t = match loop_topology {
@@ -246,12 +249,12 @@ impl AfterTheLoop<'_> {
             None => {
                 let (t, _) = self.measure(&model, self.added, &mut seconds);
                 if let Some(kept) = self.rival(&t, &mut seconds, report) {
-                    return Ok(self.with_seconds(kept, seconds));
+                    return Ok(with_seconds(kept, seconds));
                 }
                 t
             }
         };
-        Ok(self.with_seconds((model, t), seconds))
+        Ok(with_seconds((model, t), seconds))
     }
 
     fn close(&self, max_error: f64) -> bool {
@@ -272,18 +275,9 @@ impl AfterTheLoop<'_> {
             self.probes,
             self.goal.h,
             added,
-            0.0,
         );
         *seconds += t.seconds;
         (t, surface)
-    }
-
-    fn with_seconds(
-        &self,
-        (model, t): (Model<3>, TopologyReport),
-        seconds: f64,
-    ) -> (Model<3>, TopologyReport) {
-        (model, TopologyReport { seconds, ..t })
     }
 
     /// Where the loop fell short (a topology other than the mesh's, `loop_topology`, or a
@@ -571,6 +565,14 @@ fn settle_far_field<const D: usize>(
         };
     }
     model
+}
+
+/// The model with its topology, whose seconds are all the measures' (and the probes').
+fn with_seconds(
+    (model, t): (Model<3>, TopologyReport),
+    seconds: f64,
+) -> (Model<3>, TopologyReport) {
+    (model, TopologyReport { seconds, ..t })
 }
 
 /// Rows of the system `constraints` make (a normal constraint, the rival's, takes two): the

@@ -1,8 +1,8 @@
 //! The returned surface checked against the mesh itself (not in Yngve & Turk, whose error is
 //! between boundary voxels): a surface within a voxel by that measure can still stray 1.5
 //! voxels from the mesh where constraints are sparse, or carry a false handle across a gap
-//! wider than the probes reach. The surface's own polygonization (made to measure its topology)
-//! is compared with the mesh both ways: where a point of the surface lies farther than
+//! wider than the probes reach. A polygonization of the surface (the topology measure's, or
+//! one at half a voxel, [`surface_near`]) is compared with the mesh both ways: where a point of the surface lies farther than
 //! [`FAR`] voxels from the mesh, it becomes an exterior or interior constraint with its signed
 //! distance (outside or inside the mesh by its winding number), and where a vertex of the mesh
 //! lies that far from the surface, a boundary constraint; then the model is fitted again.
@@ -45,9 +45,12 @@ pub(crate) type Round = (Model<3>, Option<TopologyReport>);
 /// Up to [`POLISH_ROUNDS`] rounds of pulling `model`'s surface (`surface`, its polygonization)
 /// back where it strays from the mesh, while that keeps every probe satisfied and f negative
 /// far out. Each round's corrections come from a polygonization of the model before it: the
-/// topology measure's where [`Polishing::measure_each`] says so (the last round is always
-/// measured), else one at half a voxel found from the round before's vertices. A measured
-/// round that moves the topology farther from the mesh's than `baseline` ends the polish.
+/// topology measure's where [`Polishing::measure_each`] says so, else one at half a voxel
+/// found from the round before's vertices (which finds no piece that neither touches: a loop
+/// that came close has none a voxel off the mesh). The last round is always measured. A
+/// measured round that moves the topology farther from the mesh's than `baseline` or the
+/// measured round before it is not kept, and ends the polish: the measured rounds returned
+/// never move away from the mesh's topology.
 pub(crate) fn polish_rounds(
     p: &Polishing,
     model: &Model<3>,
@@ -57,6 +60,8 @@ pub(crate) fn polish_rounds(
     let (goal, settings, h) = (p.goal, p.settings, p.goal.h);
     let checked_vertices = sampled_vertices(p.mesh, h, |_| 0);
     let mut rounds: Vec<Round> = Vec::new();
+    let mut best = baseline.map(TopologyReport::difference);
+    let measured = |polished: &Model<3>| measure(p.mesh, p.checked, polished, p.probes, h, p.added);
     for round in 1..=POLISH_ROUNDS {
         let (Some(s), Some(tree)) = (&surface, goal.tree()) else {
             break;
@@ -97,18 +102,24 @@ pub(crate) fn polish_rounds(
             ..model.clone()
         };
         if round == POLISH_ROUNDS || p.measure_each {
-            let (t, next) = measure(p.mesh, p.checked, &polished, p.probes, h, p.added, 0.0);
-            rounds.push((polished, Some(t)));
-            surface = next;
+            let (t, next) = measured(&polished);
             // A round may trade one topological difference for another, never add one.
-            if baseline.is_some_and(|b| t.difference() > b.difference()) {
+            if best.is_some_and(|b| t.difference() > b) {
                 break;
             }
+            best = Some(t.difference());
+            rounds.push((polished, Some(t)));
+            surface = next;
         } else {
             let seeds: Vec<[f64; 3]> = s.positions().iter().step_by(8).copied().collect();
             surface = surface_near(&polished, 0.5 * h, &seeds);
             rounds.push((polished, None));
         }
+    }
+    // A last round that was not measured (the one after it found nothing to correct, or was
+    // given up) is measured now.
+    if let Some((polished, t @ None)) = rounds.last_mut() {
+        *t = Some(measured(polished).0);
     }
     Ok(rounds)
 }
@@ -151,7 +162,7 @@ fn corrections(
         .par_iter()
         .map(|&v| mesh.positions()[v])
         .filter_map(|p| {
-            let d = to_surface.distance(p).min(reach);
+            let d = to_surface.distance(p, reach);
             (d > far).then_some((d, Constraint::boundary(p)))
         })
         .collect();
@@ -194,21 +205,28 @@ impl<'a> Triangles<'a> {
         }
     }
 
-    /// The distance from p to the nearest triangle (infinite for a mesh without any).
-    fn distance(&self, p: [f64; 3]) -> f64 {
-        let Some((_, nearest)) = self.centroids.nearest(&p) else {
-            return f64::INFINITY;
+    /// The distance from p to the nearest triangle, or `limit` if none is nearer (also for a
+    /// mesh without triangles).
+    fn distance(&self, p: [f64; 3], limit: f64) -> f64 {
+        let Some((first, nearest)) = self.centroids.nearest(&p) else {
+            return limit;
+        };
+        if nearest - self.reach >= limit {
+            return limit;
+        }
+        let to = |t: usize| {
+            let [a, b, c] = self.mesh.corners(t);
+            norm(sub(closest_on_triangle(p, a, b, c), p))
         };
         // The triangle of the nearest centroid is at most `nearest` away; any triangle nearer
-        // than that has its centroid within `nearest + reach`.
+        // than that (and than the limit) has its centroid within that distance plus `reach`.
+        let d = to(first);
         self.centroids
-            .within(&p, nearest + self.reach)
+            .within(&p, d.min(limit) + self.reach)
             .into_iter()
-            .map(|(t, _)| {
-                let [a, b, c] = self.mesh.corners(t);
-                norm(sub(closest_on_triangle(p, a, b, c), p))
-            })
-            .fold(f64::INFINITY, f64::min)
+            .map(|(t, _)| to(t))
+            .fold(d, f64::min)
+            .min(limit)
     }
 }
 
@@ -231,7 +249,11 @@ mod tests {
                 r * (1.3 * t).cos(),
             ];
             let (_, expected) = tree.closest_point(p, f64::INFINITY).unwrap();
-            assert!((to.distance(p) - expected).abs() < 1e-12, "{p:?}");
+            assert!(
+                (to.distance(p, f64::INFINITY) - expected).abs() < 1e-12,
+                "{p:?}"
+            );
+            assert_eq!(to.distance(p, 0.5 * expected), 0.5 * expected);
         }
     }
 }

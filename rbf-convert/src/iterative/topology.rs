@@ -286,7 +286,6 @@ pub(crate) fn measure(
     probes: &[Probe],
     voxel: f64,
     added: usize,
-    seconds: f64,
 ) -> (TopologyReport, Option<TriMesh>) {
     let start = std::time::Instant::now();
     let cell = measure_cell(mesh, probes, voxel);
@@ -300,7 +299,7 @@ pub(crate) fn measure(
         probes: probes.len(),
         added,
         polished: 0,
-        seconds: seconds + start.elapsed().as_secs_f64(),
+        seconds: start.elapsed().as_secs_f64(),
     };
     (report, surface)
 }
@@ -340,9 +339,9 @@ fn surface_topology(
         ..Default::default()
     };
     let f = model.interpolant.view();
-    // Seeds on every component: the constraints on the surface, and the vertices of a
-    // voxel-sized grid polygonization of the whole box (which finds pieces that touch no
-    // constraint, such as a stray blob).
+    // Seeds on every component: the constraints on the surface, and the vertices of a grid
+    // polygonization of the whole box at two voxels (which finds pieces that touch no
+    // constraint, such as a stray blob, down to about that size).
     let mut seeds = rbf_mesh::surface_seeds(model);
     let coarse = PolygonizeSettings {
         resolution: Resolution::CellSize(2.0 * voxel),
