@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use rbf_convert::{IterativeSettings, convert_iterative};
+use rbf_convert::{IterativeReport, IterativeSettings, convert_iterative};
 use rbf_core::Model;
 use rbf_mesh::TriMesh;
 
@@ -231,14 +231,10 @@ fn bowl(r: f64, t: f64, rim: f64, around: u32, down: u32) -> TriMesh {
     mesh
 }
 
-#[test]
-fn a_bowl_with_a_wall_under_a_voxel_is_not_given_up_to_its_probes() {
-    // A wall of 0.046 against voxels of 1.85 / 32 = 0.058: 0.8 voxel. Every vertex lies on a
-    // part thinner than two voxels; the first fits leave nearly all of their probes violated,
-    // more than the budget holds. Taken at once, they filled it after the first iteration,
-    // whose model (3.5 voxels off) was the one kept; added a share at a time, the loop places
-    // its own constraints too and ends within two voxels.
-    let mesh = bowl(0.9, 0.046, 0.5, 96, 40);
+/// A watertight bowl of genus 0 with a wall `wall` thick, converted at 32 voxels with a budget
+/// of 1000 constraints.
+fn bowl_at_32_voxels(wall: f64) -> (IterativeSettings, Model<3>, IterativeReport) {
+    let mesh = bowl(0.9, wall, 0.5, 96, 40);
     let r = mesh.check();
     assert!(r.is_watertight() && r.genus == Some(0), "{r:?}");
     let settings = IterativeSettings {
@@ -247,6 +243,17 @@ fn a_bowl_with_a_wall_under_a_voxel_is_not_given_up_to_its_probes() {
         ..Default::default()
     };
     let (model, report) = convert_iterative(&mesh, &settings, |_, _| {}).unwrap();
+    (settings, model, report)
+}
+
+#[test]
+fn a_bowl_with_a_wall_under_a_voxel_is_not_given_up_to_its_probes() {
+    // A wall of 0.046 against voxels of 1.85 / 32 = 0.058: 0.8 voxel. Every vertex lies on a
+    // part thinner than two voxels; the first fits leave nearly all of their probes violated,
+    // more than the budget holds. Taken at once, they filled it after the first iteration,
+    // whose model (3.5 voxels off) was the one kept; added a share at a time, the loop places
+    // its own constraints too and ends within two voxels.
+    let (settings, model, report) = bowl_at_32_voxels(0.046);
     let t = report.topology.unwrap();
     assert!(t.probes > settings.max_constraints, "{t:?}");
     // The loop's own best model (its rival, normal constraints at the vertices, may be kept
@@ -267,15 +274,7 @@ fn a_shell_two_voxels_thick_that_the_loop_cannot_hold_goes_to_its_rival() {
     // for the thin-part probes. The loop's best model (1.7 voxels off, 1000 constraints) has
     // a topology other than the bowl's; normal constraints at the vertices, their inside
     // points kept within the wall, hold both sides.
-    let mesh = bowl(0.9, 0.116, 0.5, 96, 40);
-    let r = mesh.check();
-    assert!(r.is_watertight() && r.genus == Some(0), "{r:?}");
-    let settings = IterativeSettings {
-        resolution: 32,
-        max_constraints: 1000,
-        ..Default::default()
-    };
-    let (model, report) = convert_iterative(&mesh, &settings, |_, _| {}).unwrap();
+    let (settings, model, report) = bowl_at_32_voxels(0.116);
     let rival = report.rival.expect("the loop falls short");
     assert!(rival.kept, "{rival:?} {:?}", report.topology);
     let t = report.topology.unwrap();
