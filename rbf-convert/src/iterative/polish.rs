@@ -140,7 +140,9 @@ fn corrections(
 ) -> Vec<Constraint<3>> {
     let far = FAR * voxel;
     let reach = 4.0 * voxel;
-    // Surface points far from the mesh: push them to their side of it.
+    // Surface points far from the mesh: push them to their side of it. (Every other vertex of
+    // the unsimplified surface would do half the work, but missed a bulge on the penguin:
+    // Hausdorff 1.08 → 1.40 voxels.)
     let astray: Vec<(f64, Constraint<3>)> = surface
         .positions()
         .par_iter()

@@ -336,6 +336,7 @@ fn surface_topology(
     let settings = PolygonizeSettings {
         resolution: Resolution::CellSize(cell),
         root_iterations: 0,
+        simplify: false,
         ..Default::default()
     };
     let f = model.interpolant.view();
@@ -346,16 +347,20 @@ fn surface_topology(
     let coarse = PolygonizeSettings {
         resolution: Resolution::CellSize(2.0 * voxel),
         root_iterations: 0,
+        simplify: false,
         ..Default::default()
     };
     if let Ok((mesh, _)) = rbf_mesh::polygonize_grid(&f, &coarse) {
         seeds.extend(mesh.positions().iter().step_by(8));
     }
     match polygonize_continuation(&f, &seeds, &settings) {
-        Ok((mesh, _)) => {
-            let r = mesh.check();
-            (r.genus, r.components, Some(mesh))
-        }
+        Ok((mesh, _)) => match mesh.closed_topology() {
+            Some((genus, components)) => (Some(genus), components, Some(mesh)),
+            None => {
+                let r = mesh.check();
+                (r.genus, r.components, Some(mesh))
+            }
+        },
         Err(_) => (None, 0, None),
     }
 }
@@ -367,6 +372,7 @@ pub(crate) fn surface_near(model: &Model<3>, cell: f64, seeds: &[[f64; 3]]) -> O
     let settings = PolygonizeSettings {
         resolution: Resolution::CellSize(cell),
         root_iterations: 0,
+        simplify: false,
         ..Default::default()
     };
     let mut all = rbf_mesh::surface_seeds(model);

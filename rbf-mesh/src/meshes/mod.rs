@@ -2,6 +2,7 @@
 //! components, genus), its pieces, built-in shapes, and the hash maps they share.
 
 mod check;
+mod closed_topology;
 mod components;
 pub(crate) mod hash;
 mod mesh;

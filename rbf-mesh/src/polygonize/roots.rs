@@ -39,11 +39,12 @@ struct Search {
 /// does not converge fast enough.
 /// An edge is done when |f| is below 1e-8 of the change of f along it, or its Newton step is
 /// below 1e-3 of its length (Newton's error is then of the order of the step's square: the
-/// vertex is within about 1e-6 of an edge length of the surface), after at most `iterations`
-/// rounds. With `iterations` 0, f is not evaluated again: each vertex stays at the secant
-/// point of its edge (where the linear interpolation of f between the edge's ends is zero),
-/// the mesh is simplified as usual, and its vertices carry no normals. That surface has the
-/// topology of f's signs at the lattice points, for a fraction of the cost.
+/// vertex is within about 1e-6 of an edge length of the surface), after at most
+/// `settings.root_iterations` rounds. With none, f is not evaluated again: each vertex stays
+/// at the secant point of its edge (where the linear interpolation of f between the edge's
+/// ends is zero), the mesh is simplified as usual, and its vertices carry no normals. That
+/// surface has the topology of f's signs at the lattice points, for a fraction of the cost.
+/// Without `settings.simplify`, no edge is collapsed (nor any triangle unfolded after).
 ///
 /// `unique` lists each crossed edge once; `triangles` are on its indices.
 pub(crate) fn assemble(
@@ -51,8 +52,16 @@ pub(crate) fn assemble(
     lattice: &Lattice,
     unique: Vec<CrossedEdge>,
     triangles: Vec<[u32; 3]>,
-    iterations: usize,
+    settings: &super::PolygonizeSettings,
 ) -> Result<TriMesh, MeshError> {
+    let iterations = settings.root_iterations;
+    let collapse = |positions: &[[f64; 3]], triangles: Vec<[u32; 3]>, target: usize| {
+        if settings.simplify {
+            simplify::collapse(positions, triangles, lattice.h, target)
+        } else {
+            ((0..positions.len() as u32).collect(), triangles)
+        }
+    };
     let ends: Vec<([f64; 3], [f64; 3])> = unique
         .iter()
         .map(|&(key, _, _)| {
@@ -104,7 +113,7 @@ pub(crate) fn assemble(
         .filter(|e| matches!(e.0 & 7, 1 | 2 | 4))
         .count();
     let target = axis_edges + axis_edges / 8;
-    let (merged, triangles) = simplify::collapse(&estimates, triangles, lattice.h, target);
+    let (merged, triangles) = collapse(&estimates, triangles, target);
     let kept: Vec<usize> = (0..merged.len())
         .filter(|&v| merged[v] as usize == v)
         .collect();
@@ -203,7 +212,7 @@ pub(crate) fn assemble(
         .collect();
     // Root finding moved the vertices a little: collapse what became short, flip what became
     // a cap (no evaluation needed).
-    let (merged, triangles) = simplify::collapse(&positions, triangles, lattice.h, kept.len());
+    let (merged, triangles) = collapse(&positions, triangles, kept.len());
     let kept: Vec<usize> = kept
         .into_iter()
         .filter(|&v| merged[v] as usize == v)
@@ -213,7 +222,9 @@ pub(crate) fn assemble(
     let normals: Vec<[f64; 3]> = kept.iter().map(|&v| normals[v]).collect();
     // Root finding moved vertices after the first collapses: flip back any triangle that
     // turned over.
-    simplify::unfold(&positions, &normals, &mut triangles);
+    if settings.simplify {
+        simplify::unfold(&positions, &normals, &mut triangles);
+    }
     TriMesh::new(positions, triangles)?.with_normals(normals)
 }
 
