@@ -235,7 +235,8 @@ def reconstruct(
     only in a second attempt, made when the first fit strayed outside nearly everywhere or its
     mesh came out open: ``looked_again``;
     ``disagreeing``: left out), noise,
-    centres, ``lambda`` (0 for a greedy fit), outside constraints added, ``bubbles_dropped`` (pieces the scan cannot show),
+    centres (``added_where_sheets_close``: of them, the points a clean scan's spread gained
+    where two of its sheets run close), ``lambda`` (0 for a greedy fit), outside constraints added, ``bubbles_dropped`` (pieces the scan cannot show),
     watertight, genus, components).
 
     ``points``: (n, 3); ``normals``: (n, 3) or None (estimated from local planes; a given

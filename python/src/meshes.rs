@@ -303,6 +303,7 @@ pub(crate) fn _reconstruct<'py>(
     d.set_item("noise", report.noise)?;
     d.set_item("tolerance", report.tolerance)?;
     d.set_item("centres", report.centres)?;
+    d.set_item("added_where_sheets_close", report.added_where_sheets_close)?;
     d.set_item("lambda", report.lambda)?;
     d.set_item("beyond_tolerance", report.beyond_tolerance)?;
     d.set_item("largest_miss", report.largest_miss)?;

@@ -183,7 +183,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.beyond_tolerance
         );
         eprintln!(
-            "{} points read, {}{} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} by lines of sight{}, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {}{} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} by lines of sight{}, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             if report.duplicates > 0 {
                 format!("{} repeated and ", report.duplicates)
@@ -215,6 +215,10 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.noise,
             report.tolerance,
             report.centres,
+            match report.added_where_sheets_close {
+                0 => String::new(),
+                n => format!(" ({n} of them added where two sheets run close)"),
+            },
             if report.lambda > 0.0 {
                 format!(" in a smoothing fit (λ {:.1e})", report.lambda)
             } else {

@@ -113,35 +113,57 @@ pub(crate) fn bounds(points: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
     (lo, hi)
 }
 
+/// `spread` (indices into `points`) and those of `more` with no point of `spread`, nor one
+/// added before them, within `r`: a finer spread laid over a coarser one where it is wanted.
+/// `more` is visited in the same fixed pseudo-random order as [`poisson_subset`]'s points.
+pub(crate) fn spread_adding(
+    points: &[[f64; 3]],
+    spread: &[usize],
+    more: &[usize],
+    r: f64,
+) -> Vec<usize> {
+    let mut order = spread.to_vec();
+    order.extend(shuffled(more.len()).into_iter().map(|j| more[j]));
+    let mut kept = greedy_after(points, &order, r, spread.len());
+    kept.sort_unstable();
+    kept
+}
+
 /// Keeps each point (in `order`) with no kept point within `r`.
 fn greedy(points: &[[f64; 3]], order: &[usize], r: f64) -> Vec<usize> {
+    greedy_after(points, order, r, 0)
+}
+
+/// Keeps the first `given` points of `order` whatever their distances, then each point with no
+/// kept point within `r`.
+fn greedy_after(points: &[[f64; 3]], order: &[usize], r: f64, given: usize) -> Vec<usize> {
     let cell = |p: &[f64; 3]| -> [i64; 3] { core::array::from_fn(|d| (p[d] / r).floor() as i64) };
     let mut grid: FxHashMap<[i64; 3], Vec<usize>> = FxHashMap::default();
     let mut kept = Vec::new();
-    for &i in order {
+    let taken = |grid: &FxHashMap<[i64; 3], Vec<usize>>, p: &[f64; 3], c: [i64; 3]| {
+        (-1..=1).any(|dx| {
+            (-1..=1).any(|dy| {
+                (-1..=1).any(|dz| {
+                    grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz])
+                        .is_some_and(|list| {
+                            list.iter().any(|&j| {
+                                let q = points[j];
+                                let d2: f64 = (0..3).map(|d| (p[d] - q[d]).powi(2)).sum();
+                                d2 < r * r
+                            })
+                        })
+                })
+            })
+        })
+    };
+    for (n, &i) in order.iter().enumerate() {
         let p = points[i];
         let c = cell(&p);
-        let mut free = true;
-        'search: for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    if let Some(list) = grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) {
-                        for &j in list {
-                            let q = points[j];
-                            let d2: f64 = (0..3).map(|d| (p[d] - q[d]).powi(2)).sum();
-                            if d2 < r * r {
-                                free = false;
-                                break 'search;
-                            }
-                        }
-                    }
-                }
-            }
+        if n >= given && taken(&grid, &p, c) {
+            continue;
         }
-        if free {
-            grid.entry(c).or_default().push(i);
-            kept.push(i);
-        }
+        grid.entry(c).or_default().push(i);
+        kept.push(i);
     }
     kept
 }

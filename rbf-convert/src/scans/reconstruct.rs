@@ -198,6 +198,10 @@ pub struct ReconstructReport {
     pub tolerance: f64,
     /// Points that carry constraints.
     pub centres: usize,
+    /// Of those, the points a clean scan's even spread gained where two of its sheets run
+    /// close (a gap or a thin part a few spread spacings across), so that the fit keeps them
+    /// apart.
+    pub added_where_sheets_close: usize,
     /// λ of the smoothing fit in the points' units, or 0 when the fit was greedy (a tolerance
     /// given).
     pub lambda: f64,
@@ -388,6 +392,16 @@ pub fn reconstruct(
     }
     .max(FEWEST_POINTS);
     let spread = crate::poisson_subset(&smoothed, spread_size);
+    // A clean scan's spread is made finer where two of its sheets run close, so that the fit
+    // keeps them apart (a noisy one's smoothing would join them anyway, and its normals there
+    // are the least sure).
+    let even = spread.len();
+    let spread = if smooth_fit && !noisy {
+        super::close_sheets::thicken_at_close_sheets(&smoothed, &oriented.normals, spread).0
+    } else {
+        spread
+    };
+    let added_where_sheets_close = spread.len() - even;
     // Normals at odds with their neighbourhood (noise near a crease, an isolated wrong sign)
     // would be the worst-met constraints, and so the first chosen: they are left out.
     let thinned = spread.len();
@@ -716,6 +730,7 @@ pub fn reconstruct(
         noise,
         tolerance,
         centres: report.used.len(),
+        added_where_sheets_close,
         lambda,
         largest_miss,
         within_tolerance: report.converged,
@@ -1337,7 +1352,7 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(super) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
