@@ -247,7 +247,8 @@ def reconstruct(
     λ = ``smoothing`` for a box whose longest side is 2 (larger is smoother; default: chosen
     from the measured noise: 3e-5 on a clean scan, which follows the points closely but does
     not close narrow crevices over; 1e-4 up to a noise of 6e-3 of the box, growing as its
-    power 1.5 above): 1.5·10⁴ points of a clean scan, 10⁴ of a noisy one. With ``tolerance``
+    power 1.5 above): 1.5·10⁴ points of a clean scan (twice as fine where two sheets face
+    each other closely), 10⁴ of a noisy one. With ``tolerance``
     (a fraction of the box's longest side) greedily chosen points carry the constraints
     instead, until the surface passes within it of every point. ``max_centres`` caps the
     points that carry constraints in either fit (default: the spreads above; 8000 greedy). Where f is not

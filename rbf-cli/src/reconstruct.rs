@@ -35,8 +35,9 @@ of outside constraints, or its mesh comes out open). Normals more than 60°
 from their neighbours' are left out. Each inside point of a normal constraint goes only as deep as it stays nearest
 its own point, so that thin walls are not pierced. An even spread of
 the points then carries normal constraints in one smoothing fit (λ, --smoothing): on a clean
-scan 1.5·10⁴ of them and a light λ (3e-5), which follows the points closely but does not close
-narrow crevices over; on a noisy one 10⁴ of its smoothed points and a λ that grows with the
+scan 1.5·10⁴ of them (twice as fine where two sheets face each other within three of its
+spacings) and a light λ (3e-5), which follows the points closely but does not close narrow
+crevices over; on a noisy one 10⁴ of its smoothed points and a λ that grows with the
 noise, which passes through its middle. --tolerance T asks for a greedy fit instead: a subset
 of the points chosen greedily carries the constraints until the surface passes within T of
 every point (up to --max-centres; films may close crevices over). Holes are closed by the implicit surface itself, and where f is not
@@ -75,8 +76,9 @@ pub(crate) struct ReconstructArgs {
     /// times the measured noise, at least 2.5e-3].
     #[arg(long, value_name = "T")]
     tolerance: Option<f64>,
-    /// The most points that carry constraints [default: an even spread of 15000 on a clean
-    /// scan, 10000 on a noisy one; 8000 in a greedy fit (--tolerance)].
+    /// The most points that carry constraints, a cap [default: an even spread of 15000 on a
+    /// clean scan, made finer where two sheets run close; 10000 on a noisy one; 8000 in a
+    /// greedy fit (--tolerance)].
     #[arg(long, value_name = "N")]
     max_centres: Option<usize>,
     /// λ of the smoothing fit, for a box whose longest side is 2: larger is smoother, smaller

@@ -92,6 +92,11 @@ pub struct ReconstructSettings {
     /// has: 10⁴ lost F-score at 0.5 % on detailed meshes (Nefertiti 0.9994 → 0.9983, the boot
     /// 0.9922 → 0.9891, the goat head 0.9935 → 0.9928); 2·10⁴ took twice the time of 10⁴.
     pub clean_centres: usize,
+    /// Make a clean scan's spread twice as fine where two of its sheets face each other
+    /// within three of its spacings, so that its fit does not bridge them (see
+    /// [`super::close_sheets`]): on by default; [`Self::with_max_centres`] turns it off, its
+    /// count being a cap.
+    pub finer_at_close_sheets: bool,
     /// Check a clean scan's normals by lines of sight too, as a noisy scan's always are
     /// ([`super::sight`]). Off by default: on the clean scans of the corpus its turns changed
     /// little but the genus of a boat and a sword, and the clean sword took 45 s instead of 20.
@@ -113,6 +118,7 @@ impl Default for ReconstructSettings {
             smoothing: None,
             smoothed_centres: 10_000,
             clean_centres: 15_000,
+            finer_at_close_sheets: true,
             sight: false,
         }
     }
@@ -121,7 +127,7 @@ impl Default for ReconstructSettings {
 impl ReconstructSettings {
     /// These settings with at most `count` points carrying constraints, in whichever fit the
     /// scan gets: the greedy fit's budget, and the smoothing fits' spreads where they are
-    /// larger.
+    /// larger (and not made finer where sheets run close).
     ///
     /// ```
     /// use rbf_convert::ReconstructSettings;
@@ -129,12 +135,14 @@ impl ReconstructSettings {
     /// assert_eq!((few.max_centres, few.smoothed_centres, few.clean_centres), (5000, 5000, 5000));
     /// let many = ReconstructSettings::default().with_max_centres(12_000);
     /// assert_eq!((many.max_centres, many.smoothed_centres, many.clean_centres), (12_000, 10_000, 12_000));
+    /// assert!(ReconstructSettings::default().finer_at_close_sheets && !many.finer_at_close_sheets);
     /// ```
     pub fn with_max_centres(self, count: usize) -> Self {
         Self {
             max_centres: count,
             smoothed_centres: self.smoothed_centres.min(count),
             clean_centres: self.clean_centres.min(count),
+            finer_at_close_sheets: false,
             ..self
         }
     }
@@ -396,7 +404,7 @@ pub fn reconstruct(
     // keeps them apart (a noisy one's smoothing would join them anyway, and its normals there
     // are the least sure).
     let even = spread.len();
-    let spread = if smooth_fit && !noisy {
+    let spread = if smooth_fit && !noisy && settings.finer_at_close_sheets {
         super::close_sheets::thicken_at_close_sheets(&smoothed, &oriented.normals, spread).0
     } else {
         spread
