@@ -559,3 +559,46 @@ fn a_very_noisy_scan_is_smoothed_more() {
         "RMS {chosen} off the torus, {fixed} with λ 1e-4"
     );
 }
+
+/// `n` points spread over a sphere of radius 1 about `centre` by a golden-angle lattice.
+fn sphere(n: usize, centre: [f64; 3]) -> Vec<[f64; 3]> {
+    (0..n)
+        .map(|i| {
+            let z = 1.0 - (2 * i + 1) as f64 / n as f64;
+            let t = 2.399_963_229_728_653 * i as f64;
+            let s = (1.0 - z * z).sqrt();
+            [
+                centre[0] + s * t.cos(),
+                centre[1] + s * t.sin(),
+                centre[2] + z,
+            ]
+        })
+        .collect()
+}
+
+/// Two spheres a gap of under two spread spacings apart: the clean scan's spread gains points
+/// where they face each other (and only a few), and the surface comes out as two closed
+/// pieces; with a cap on the centres (`with_max_centres`) it gains none.
+#[test]
+fn a_spread_is_made_finer_where_two_sheets_face_each_other() {
+    let mut points = sphere(10_000, [0.0; 3]);
+    points.extend(sphere(10_000, [2.15, 0.0, 0.0]));
+    // A spread of 3000 over the two spheres' area (8π) is about 0.1 apart; the gap is 0.15.
+    let settings = ReconstructSettings {
+        clean_centres: 3000,
+        ..Default::default()
+    };
+    let (model, report) = reconstruct(&points, None, &settings).unwrap();
+    assert!(
+        report.added_where_sheets_close > 40 && report.added_where_sheets_close < 400,
+        "{} added",
+        report.added_where_sheets_close
+    );
+    let (watertight, _, components) = topology(&model);
+    assert!(watertight);
+    assert_eq!(components, 2);
+    let capped = settings.with_max_centres(3000);
+    let (_, report) = reconstruct(&points, None, &capped).unwrap();
+    assert_eq!(report.added_where_sheets_close, 0);
+    assert!(report.centres <= 3000);
+}
