@@ -44,14 +44,10 @@ pub(super) fn thicken_at_close_sheets(
 ) -> (Vec<usize>, usize) {
     let at: Vec<[f64; 3]> = spread.iter().map(|&i| points[i]).collect();
     let tree = PointTree::new(&at);
-    let nearest = Neighbours::with_tree(&tree, &at, 1);
-    let spacings: Vec<f64> = (0..nearest.len())
-        .filter_map(|i| nearest.distances_of(i).first().copied())
-        .collect();
-    let spacing = super::dipoles::median(&spacings);
-    if !(spacing > 0.0) {
+    let spacing = super::dipoles::median_spacing(&Neighbours::with_tree(&tree, &at, 1));
+    let Some(spacing) = spacing.filter(|&s| s > 0.0) else {
         return (spread, 0);
-    }
+    };
     let close: Vec<bool> = (0..at.len())
         .into_par_iter()
         .map(|a| {

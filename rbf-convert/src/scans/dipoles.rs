@@ -75,6 +75,14 @@ pub(crate) fn flip_against_winding(
     flipped
 }
 
+/// The median distance from a point to its nearest neighbour in `near` (`None` for no points).
+pub(super) fn median_spacing(near: &Neighbours) -> Option<f64> {
+    let nearest: Vec<f64> = (0..near.len())
+        .filter_map(|i| near.distances_of(i).first().copied())
+        .collect();
+    (!nearest.is_empty()).then(|| median(&nearest))
+}
+
 /// The median of `values` (NaN when there are none).
 pub(super) fn median(values: &[f64]) -> f64 {
     let mut sorted = values.to_vec();
@@ -95,13 +103,7 @@ pub(crate) fn probes_along_normals(
     near: &Neighbours,
     longest: f64,
 ) -> Option<(Vec<usize>, Vec<[f64; 3]>)> {
-    let nearest: Vec<f64> = (0..near.len())
-        .filter_map(|i| near.distances_of(i).first().copied())
-        .collect();
-    if nearest.is_empty() {
-        return None;
-    }
-    let spacing = median(&nearest);
+    let spacing = median_spacing(near)?;
     let offsets = clear_offsets(points, normals, REACH * longest);
     let judged: Vec<usize> = (0..points.len())
         .filter(|&i| offsets[i].iter().all(|&t| t >= CLOSEST * spacing))

@@ -401,7 +401,7 @@ pub fn reconstruct(
     .max(FEWEST_POINTS);
     let spread = crate::poisson_subset(&smoothed, spread_size);
     // A clean scan's spread is made finer where two of its sheets run close, so that the fit
-    // keeps them apart (a noisy one's smoothing would join them anyway, and its normals there
+    // keeps them apart (not a noisy one's: not measured there, and its normals at close sheets
     // are the least sure).
     let even = spread.len();
     let spread = if smooth_fit && !noisy && settings.finer_at_close_sheets {
@@ -701,14 +701,7 @@ pub fn reconstruct(
         )?;
     }
     let outside_added = added.iter().filter(|&&a| a).count();
-    let nearest: Vec<f64> = (0..near.len())
-        .filter_map(|i| near.distances_of(i).first().copied())
-        .collect();
-    let spacing = if nearest.is_empty() {
-        0.0
-    } else {
-        super::dipoles::median(&nearest)
-    };
+    let spacing = super::dipoles::median_spacing(&near).unwrap_or(0.0);
     let support_reach = (1.5 * spacing).max(2.0 * tolerance * longest);
     // Outside means negative: check the shell around the box.
     let view = fit.interpolant.view();
