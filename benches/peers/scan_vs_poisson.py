@@ -12,7 +12,12 @@ default) and repeatable:
 - Gaussian noise of σ = NOISE × the diagonal along every axis;
 - outliers: 0.2 % more points, uniform in the box grown by a tenth;
 - with `--sparse S`, only the share S of the points on one half (beyond the middle of the
-  longest side) is kept, as if that half were scanned from farther away.
+  longest side) is kept, as if that half were scanned from farther away;
+- with `--views K`, a scanner's sight instead of the spread, holes and axis-wise noise above:
+  the points that K views from above see (orthographic depth maps around the object, 15–60°
+  above the horizon of +y, so the underside and the deep concavities go unseen; grazing faces
+  beyond 75° dropped; density by the cosine of the angle of view), points seen from several
+  views kept once per view, and the noise along each view's line of sight.
 
 No normals are given to either tool. Open3D (as its users run it): statistical outliers (20
 neighbours, 2 deviations), normals from 20 neighbours, oriented by its tangent-plane MST,
@@ -31,7 +36,7 @@ wall time and peak memory of the whole tool (reading and writing included).
     apt-get install libusb-1.0-0    # Open3D's wheel loads it (an ImportError without it)
     cargo build --release -p rbf-cli
     /tmp/scan-venv/bin/python benches/peers/scan_vs_poisson.py [--points 100000]
-        [--noise 0 0.002 0.005 0.01] [--sparse 0.08] [--seed 11] [--tools rbf open3d meshlab] [--exact]
+        [--noise 0 0.002 0.005 0.01] [--sparse 0.08 | --views 8] [--seed 11] [--tools rbf open3d meshlab] [--exact]
         [MESH ...]
 
 Prints one JSON line per scan and tool, then a Markdown table.
@@ -85,6 +90,54 @@ def simulate(mesh, n, noise, seed, sparse=None):
         keep = (clean[:, axis] < middle) | (rng.uniform(size=n) < sparse)
         clean, normals, n = clean[keep], normals[keep], int(keep.sum())
     noisy = clean + rng.normal(size=clean.shape) * noise * diag
+    m = max(1, int(0.002 * n))
+    grow = 0.1 * mesh.extents
+    outliers = rng.uniform(mesh.bounds[0] - grow, mesh.bounds[1] + grow, size=(m, 3))
+    real = np.concatenate([np.ones(n, bool), np.zeros(m, bool)])
+    order = rng.permutation(n + m)
+    cloud = np.vstack([noisy, outliers])[order]
+    return cloud, clean, normals, real[order], order
+
+
+def simulate_views(mesh, n, noise, seed, views):
+    """Like `simulate`, but what a scanner sees from `views` directions above the object."""
+    rng = np.random.default_rng(seed)
+    diag = float(np.linalg.norm(mesh.extents))
+    candidates, faces = trimesh.sample.sample_surface(mesh, 40 * n, seed=int(rng.integers(1 << 31)))
+    face_normals = mesh.face_normals[faces]
+    pixel = diag / 500.0
+    turn = rng.uniform(0, 2 * np.pi)
+    seen_points, seen_normals, seen_rays = [], [], []
+    for v in range(views):
+        azimuth = turn + 2 * np.pi * v / views
+        elevation = np.radians(rng.uniform(15, 60))
+        # The direction the view looks along (from the scanner toward the object), y up.
+        d = -np.array([np.cos(elevation) * np.cos(azimuth), np.sin(elevation),
+                       np.cos(elevation) * np.sin(azimuth)])
+        a = np.cross(d, [0.0, 1.0, 0.0])
+        a /= np.linalg.norm(a)
+        b = np.cross(d, a)
+        facing = -(face_normals @ d)
+        u = np.floor(candidates @ a / pixel).astype(np.int64)
+        w = np.floor(candidates @ b / pixel).astype(np.int64)
+        u -= u.min()
+        w -= w.min()
+        cell = u * (w.max() + 1) + w
+        depth = candidates @ d
+        front = np.full(cell.max() + 1, np.inf)
+        np.minimum.at(front, cell, depth)
+        visible = (depth <= front[cell] + 1.5 * pixel) & (facing > np.cos(np.radians(75)))
+        visible &= rng.uniform(size=len(candidates)) < facing
+        seen_points.append(candidates[visible])
+        seen_normals.append(face_normals[visible])
+        seen_rays.append(np.broadcast_to(d, (int(visible.sum()), 3)))
+    clean = np.vstack(seen_points)
+    normals = np.vstack(seen_normals)
+    rays = np.vstack(seen_rays)
+    pick = rng.permutation(len(clean))[:n]
+    clean, normals, rays = clean[pick], normals[pick], rays[pick]
+    n = len(clean)
+    noisy = clean + rays * rng.normal(size=(n, 1)) * noise * diag
     m = max(1, int(0.002 * n))
     grow = 0.1 * mesh.extents
     outliers = rng.uniform(mesh.bounds[0] - grow, mesh.bounds[1] + grow, size=(m, 3))
@@ -231,6 +284,8 @@ def main():
                     help="seed of the simulated scans (11: the README's tables)")
     ap.add_argument("--sparse", type=float, default=None,
                     help="keep only this share of the points on one half of each object")
+    ap.add_argument("--views", type=int, default=None,
+                    help="simulate a scanner's sight from this many views above the object")
     ap.add_argument("--exact", action="store_true",
                     help="also F-scores by exact distances to each surface's triangles "
                          "(f_score_*_exact; slower)")
@@ -250,8 +305,12 @@ def main():
         truth_samples, _ = trimesh.sample.sample_surface(truth, 100_000, seed=3)
         for noise in args.noise:
             out_dir = tempfile.mkdtemp(prefix=f"scan-{name}-")
-            cloud, clean, normals, real, order = simulate(truth, args.points, noise, seed=args.seed,
-                                                          sparse=args.sparse)
+            if args.views:
+                cloud, clean, normals, real, order = simulate_views(truth, args.points, noise,
+                                                                    args.seed, args.views)
+            else:
+                cloud, clean, normals, real, order = simulate(truth, args.points, noise,
+                                                              seed=args.seed, sparse=args.sparse)
             cloud_path = os.path.join(out_dir, "cloud.npy")
             np.save(cloud_path, cloud)
             scan = dict(mesh=name, points=len(cloud), noise_pct=100 * noise)

@@ -458,6 +458,11 @@ pub fn reconstruct(
     } else {
         &[super::patches::CUT, super::patches::FINE_CUT]
     };
+    let least_say = if noisy {
+        0.0
+    } else {
+        super::patches::CLEAN_LEAST_SAY
+    };
     for &cut in cuts {
         reversed_by_winding += super::patches::flip_patches(
             &spread_points,
@@ -465,6 +470,7 @@ pub fn reconstruct(
             &spread_near,
             longest,
             cut,
+            least_say,
         );
     }
     let juries = if noisy {
@@ -516,6 +522,7 @@ pub fn reconstruct(
                 &spread_near,
                 longest,
                 super::patches::CUT,
+                least_say,
             );
             reversed_by_winding += now;
             if now == 0 {
@@ -552,6 +559,7 @@ pub fn reconstruct(
                 &spread_near,
                 longest,
                 super::patches::CUT,
+                least_say,
             );
         }
         let lone: Vec<usize> = (0..spread_points.len())
