@@ -62,6 +62,18 @@ rbf = os.environ.get("RBF", os.path.join(root, "target", "release", "rbf"))
 DEFAULT_MESHES = ["bunny_small", "spot", "cow", "knot", "torus", "koala"]
 
 
+def with_outliers(mesh, noisy, rng):
+    """The cloud: `noisy` with 0.2 % more points uniform in the box grown by a tenth, shuffled;
+    which of its points are real, and the shuffle."""
+    n = len(noisy)
+    m = max(1, int(0.002 * n))
+    grow = 0.1 * mesh.extents
+    outliers = rng.uniform(mesh.bounds[0] - grow, mesh.bounds[1] + grow, size=(m, 3))
+    real = np.concatenate([np.ones(n, bool), np.zeros(m, bool)])
+    order = rng.permutation(n + m)
+    return np.vstack([noisy, outliers])[order], real[order], order
+
+
 def simulate(mesh, n, noise, seed, sparse=None):
     """(points, clean points, true normals of the clean points, mask of real points).
 
@@ -90,13 +102,8 @@ def simulate(mesh, n, noise, seed, sparse=None):
         keep = (clean[:, axis] < middle) | (rng.uniform(size=n) < sparse)
         clean, normals, n = clean[keep], normals[keep], int(keep.sum())
     noisy = clean + rng.normal(size=clean.shape) * noise * diag
-    m = max(1, int(0.002 * n))
-    grow = 0.1 * mesh.extents
-    outliers = rng.uniform(mesh.bounds[0] - grow, mesh.bounds[1] + grow, size=(m, 3))
-    real = np.concatenate([np.ones(n, bool), np.zeros(m, bool)])
-    order = rng.permutation(n + m)
-    cloud = np.vstack([noisy, outliers])[order]
-    return cloud, clean, normals, real[order], order
+    cloud, real, order = with_outliers(mesh, noisy, rng)
+    return cloud, clean, normals, real, order
 
 
 def simulate_views(mesh, n, noise, seed, views):
@@ -138,13 +145,8 @@ def simulate_views(mesh, n, noise, seed, views):
     clean, normals, rays = clean[pick], normals[pick], rays[pick]
     n = len(clean)
     noisy = clean + rays * rng.normal(size=(n, 1)) * noise * diag
-    m = max(1, int(0.002 * n))
-    grow = 0.1 * mesh.extents
-    outliers = rng.uniform(mesh.bounds[0] - grow, mesh.bounds[1] + grow, size=(m, 3))
-    real = np.concatenate([np.ones(n, bool), np.zeros(m, bool)])
-    order = rng.permutation(n + m)
-    cloud = np.vstack([noisy, outliers])[order]
-    return cloud, clean, normals, real[order], order
+    cloud, real, order = with_outliers(mesh, noisy, rng)
+    return cloud, clean, normals, real, order
 
 
 def timed(command):
