@@ -294,6 +294,10 @@ def main():
     ap.add_argument("--tools", nargs="+", default=["rbf", "open3d", "meshlab"],
                     help="which tools to run (rbf, open3d, meshlab)")
     args = ap.parse_args()
+    if args.views is not None and args.sparse is not None:
+        ap.error("--views and --sparse are two ways to simulate a scan: give one")
+    if args.views is not None and args.views < 1:
+        ap.error("--views needs at least one view")
     depth = args.depth or (10 if args.points >= 500_000 else 9)
     try:
         import pymeshlab  # noqa: F401
