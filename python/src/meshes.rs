@@ -300,6 +300,7 @@ pub(crate) fn _reconstruct<'py>(
     d.set_item("disagreeing", report.disagreeing)?;
     d.set_item("contradicted", report.contradicted)?;
     d.set_item("pieces", report.pieces)?;
+    d.set_item("neighbours", report.neighbours)?;
     d.set_item("noise", report.noise)?;
     d.set_item("tolerance", report.tolerance)?;
     d.set_item("centres", report.centres)?;

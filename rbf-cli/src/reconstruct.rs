@@ -14,7 +14,9 @@ use crate::failure::{BAD_INPUT, Failure, USAGE};
 pub(crate) const HELP: &str = "\
 Points given twice are dropped, then outliers (a mean distance to the 20 nearest points more
 than 2.5 deviations above the cloud's, and 1.5 times its neighbours' or 8 times the cloud's
-median: a region scanned more sparsely than the rest is kept), normals estimated from local planes where the cloud has none (16 neighbours) and
+median: a region scanned more sparsely than the rest is kept), normals estimated from local planes where the cloud has none (16 neighbours;
+more, up to 128, for a cloud scanned in lines, slices or profiles farther apart than 16 reach,
+whose spread is then thinned as many times over) and
 every normal oriented consistently and outward (a minimum spanning tree of the neighbour graph;
 given normals are checked the same way and flipped ones fixed); then patches of them, cut where
 neighbouring normals turn by more than 35° (on a clean scan, again at 26°), are reversed as a
@@ -185,7 +187,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.beyond_tolerance
         );
         eprintln!(
-            "{} points read, {}{} outliers dropped{}, normals {} ({} flipped, {} reversed by winding numbers, {} by fits, {} by lines of sight{}, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {}{} outliers dropped{}, normals {}{} ({} flipped, {} reversed by winding numbers, {} by fits, {} by lines of sight{}, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             if report.duplicates > 0 {
                 format!("{} repeated and ", report.duplicates)
@@ -202,6 +204,14 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
                 (true, _) => "estimated".to_string(),
                 (false, 0) => "given".to_string(),
                 (false, n) => format!("given, {n} of zero length estimated"),
+            },
+            if report.neighbours > settings.neighbours {
+                format!(
+                    ", from {} neighbours each (the points lie in lines, slices or profiles, farther apart than fewer reach)",
+                    report.neighbours
+                )
+            } else {
+                String::new()
             },
             report.flipped,
             report.reversed_by_winding,

@@ -32,6 +32,25 @@ pub fn estimate_normals(points: &[[f64; 3]], neighbours: &Neighbours) -> Vec<[f6
 /// assert!(normal_of(&points, 0, &[1, 2, 3])[2].abs() > 0.999);
 /// ```
 pub fn normal_of(points: &[[f64; 3]], i: usize, near: &[u32]) -> [f64; 3] {
+    let Some(covariance) = covariance_of(points, i, near) else {
+        return [0.0; 3];
+    };
+    let eigen = covariance.symmetric_eigen();
+    let smallest = (0..3)
+        .min_by(|&a, &b| eigen.eigenvalues[a].total_cmp(&eigen.eigenvalues[b]))
+        .unwrap_or(0);
+    let v = eigen.eigenvectors.column(smallest);
+    let length = v.norm();
+    if length > 0.0 {
+        [v[0] / length, v[1] / length, v[2] / length]
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// The covariance of point `i` and its neighbours `near` about their centre; `None` where it
+/// is zero or not finite.
+fn covariance_of(points: &[[f64; 3]], i: usize, near: &[u32]) -> Option<Matrix3<f64>> {
     let count = (near.len() + 1) as f64;
     let members = || std::iter::once(&points[i]).chain(near.iter().map(|&j| &points[j as usize]));
     let mut centre = [0.0; 3];
@@ -47,18 +66,44 @@ pub fn normal_of(points: &[[f64; 3]], i: usize, near: &[u32]) -> [f64; 3] {
             }
         }
     }
-    if covariance.iter().all(|v| *v == 0.0) || !covariance.iter().all(|v| v.is_finite()) {
-        return [0.0; 3];
+    let usable = covariance.iter().any(|v| *v != 0.0) && covariance.iter().all(|v| v.is_finite());
+    usable.then_some(covariance)
+}
+
+/// A neighbourhood whose middle spread is below this share of its largest (eigenvalues of its
+/// covariance) lies along a line: it cannot tell a plane.
+const LINE_SPREAD: f64 = 0.05;
+
+/// The share of `rows` (rows of `near`, each that of the point `which[r]`) whose neighbourhood
+/// lies along a line, as points scanned in lines do (slices, a line scanner's profiles, lidar
+/// rings) where the lines lie farther apart than `near` reaches: their planes, and so their
+/// normals, are undetermined.
+///
+/// ```
+/// use rbf_cloud::{Neighbours, PointTree, line_share};
+/// // A square of lines 0.05 apart, of points 0.002 apart: 16 neighbours stay on their own
+/// // line, 256 reach across several.
+/// let points: Vec<[f64; 3]> =
+///     (0..10_000).map(|i| [(i % 500) as f64 * 0.002, (i / 500) as f64 * 0.05, 0.0]).collect();
+/// let tree = PointTree::new(&points);
+/// let which: Vec<usize> = (0..points.len()).step_by(10).collect();
+/// assert!(line_share(&points, &which, &Neighbours::of_some(&tree, &points, &which, 16)) > 0.9);
+/// assert!(line_share(&points, &which, &Neighbours::of_some(&tree, &points, &which, 256)) < 0.1);
+/// ```
+pub fn line_share(points: &[[f64; 3]], which: &[usize], near: &Neighbours) -> f64 {
+    if which.is_empty() {
+        return 0.0;
     }
-    let eigen = covariance.symmetric_eigen();
-    let smallest = (0..3)
-        .min_by(|&a, &b| eigen.eigenvalues[a].total_cmp(&eigen.eigenvalues[b]))
-        .unwrap_or(0);
-    let v = eigen.eigenvectors.column(smallest);
-    let length = v.norm();
-    if length > 0.0 {
-        [v[0] / length, v[1] / length, v[2] / length]
-    } else {
-        [0.0; 3]
-    }
+    let along_lines = which
+        .par_iter()
+        .enumerate()
+        .filter(|&(r, &i)| {
+            covariance_of(points, i, near.of(r)).is_some_and(|c| {
+                let mut e: Vec<f64> = c.symmetric_eigenvalues().iter().copied().collect();
+                e.sort_by(f64::total_cmp);
+                e[1] < LINE_SPREAD * e[2]
+            })
+        })
+        .count();
+    along_lines as f64 / which.len() as f64
 }

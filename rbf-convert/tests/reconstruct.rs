@@ -602,3 +602,52 @@ fn a_spread_is_made_finer_where_two_sheets_face_each_other() {
     assert_eq!(report.added_where_sheets_close, 0);
     assert!(report.centres <= 3000);
 }
+
+/// The torus of [`torus`] scanned in slices: circles in 13 planes z = const, 0.06 apart, each
+/// sampled 0.005 apart (as a stack of contours, or a line scanner's profiles). Sixteen
+/// neighbours stay on their own circle and cannot tell a plane; the neighbourhoods grow until
+/// they span the slices, and the surface comes out the torus, every normal pointing out.
+#[test]
+fn a_torus_scanned_in_slices_comes_out_closed_with_its_hole() {
+    let mut points = Vec::new();
+    let mut normals = Vec::new();
+    for slice in 0..13 {
+        let z = -0.36 + 0.06 * slice as f64;
+        let across = (0.16 - z * z).sqrt();
+        for side in [-1.0, 1.0] {
+            let r = 1.0 + side * across;
+            let count = (std::f64::consts::TAU * r / 0.005) as usize;
+            for i in 0..count {
+                let u = std::f64::consts::TAU * (i as f64 + 0.5 * slice as f64) / count as f64;
+                points.push([r * u.cos(), r * u.sin(), z]);
+                // The tube's outward normal: from its centre circle to the point.
+                let (dx, dz) = (side * across, z);
+                let length = dx.hypot(dz);
+                normals.push([dx / length * u.cos(), dx / length * u.sin(), dz / length]);
+            }
+        }
+    }
+    let (model, report) = reconstruct(&points, None, &ReconstructSettings::default()).unwrap();
+    assert!(report.neighbours > 16, "{}", report.neighbours);
+    let (watertight, genus, components) = topology(&model);
+    assert!(watertight);
+    assert_eq!((genus, components), (Some(1), 1));
+    let f = model.interpolant.view();
+    let outward = points
+        .iter()
+        .zip(&normals)
+        .filter(|(p, n)| {
+            let g = f.gradient(p);
+            -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > 0.0
+        })
+        .count();
+    assert!(
+        outward * 1000 >= 999 * points.len(),
+        "{outward} of {}",
+        points.len()
+    );
+    assert!(
+        points.iter().all(|p| f.value(p).abs() < 0.05),
+        "the surface passes by the points"
+    );
+}

@@ -48,7 +48,9 @@ const MIN_TOLERANCE: f64 = 2.5e-3;
 /// Settings of [`reconstruct`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReconstructSettings {
-    /// Neighbours of each point for its normal and its noise: 16.
+    /// Neighbours of each point for its normal and its noise: 16 (doubled, up to 128, while
+    /// more than a fifth of the neighbourhoods lie along lines: a cloud scanned in slices or
+    /// profiles; see [`ReconstructReport::neighbours`]).
     pub neighbours: usize,
     /// Drop points whose mean distance to their 20 nearest neighbours exceeds the cloud's mean
     /// by this many standard deviations: 2.5; `None` keeps every point.
@@ -199,6 +201,10 @@ pub struct ReconstructReport {
     pub beyond_tolerance: usize,
     /// Connected pieces of the neighbour graph.
     pub pieces: usize,
+    /// Neighbours of each point its normal and the neighbour graph were taken from:
+    /// [`ReconstructSettings::neighbours`], or more for a cloud scanned in lines (slices,
+    /// profiles) farther apart than those reach.
+    pub neighbours: usize,
     /// The noise measured: the median over points of the RMS residual of a quadratic height
     /// function fitted to their neighbourhood, as a fraction of the box's longest side.
     pub noise: f64,
@@ -307,9 +313,9 @@ pub fn reconstruct(
         keep = subset.iter().map(|&j| keep[j]).collect();
         kept = subset.iter().map(|&j| kept[j]).collect();
     }
-    let k = settings.neighbours.max(3);
     // One tree over the kept points serves their neighbourhoods of every size.
     let kept_tree = PointTree::new(&kept);
+    let k = neighbourhood_size(&kept, &kept_tree, settings.neighbours.max(3));
     let near = Neighbours::with_tree(&kept_tree, &kept, k);
     // A given normal of zero length (scanners write one where they had none) is estimated as
     // if none had been given; a cloud whose given normals all have zero length has none.
@@ -398,6 +404,9 @@ pub fn reconstruct(
         (true, false) => settings.clean_centres,
         (false, _) => THINNED,
     }
+    // A cloud scanned in lines is thinned as many times over as its neighbourhoods grew, so
+    // that its spread lies about as far apart along the lines as across them.
+    .min(smoothed.len() * settings.neighbours.max(3) / k)
     .max(FEWEST_POINTS);
     let spread = crate::poisson_subset(&smoothed, spread_size);
     // A clean scan's spread is made finer where two of its sheets run close, so that the fit
@@ -736,6 +745,7 @@ pub fn reconstruct(
         contradicted: report.contradicted,
         beyond_tolerance,
         pieces: oriented.components,
+        neighbours: k,
         noise,
         tolerance,
         centres: report.used.len(),
@@ -1166,6 +1176,31 @@ fn measure_noise(
     });
     (noise, wide)
 }
+
+/// The neighbours each point's plane and the orientation's graph are taken from: `k`, or,
+/// where more than [`LINES_SHARE`] of the neighbourhoods lie along lines (points scanned in
+/// slices or profiles farther apart than `k` neighbours reach), `k` doubled until they span
+/// several lines (at most [`MOST_LINE_NEIGHBOURS`]).
+fn neighbourhood_size(points: &[[f64; 3]], tree: &PointTree, k: usize) -> usize {
+    let sample: Vec<usize> = (0..points.len())
+        .step_by((points.len() / NOISE_SAMPLE).max(1))
+        .collect();
+    let mut k = k;
+    while k < MOST_LINE_NEIGHBOURS {
+        let rows = Neighbours::of_some(tree, points, &sample, k);
+        if rbf_cloud::line_share(points, &sample, &rows) <= LINES_SHARE {
+            break;
+        }
+        k *= 2;
+    }
+    k
+}
+
+/// The share of neighbourhoods along lines above which the cloud counts as scanned in lines.
+const LINES_SHARE: f64 = 0.2;
+
+/// The most neighbours a cloud scanned in lines is given.
+const MOST_LINE_NEIGHBOURS: usize = 128;
 
 /// A noisy point whose neighbourhood reaches beyond this many times the reach the
 /// neighbourhoods were grown to (four times the noise, at the median) is smoothed onto a
