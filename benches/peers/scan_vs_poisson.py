@@ -13,6 +13,9 @@ default) and repeatable:
 - outliers: 0.2 % more points, uniform in the box grown by a tenth;
 - with `--sparse S`, only the share S of the points on one half (beyond the middle of the
   longest side) is kept, as if that half were scanned from farther away;
+- with `--slices K`, a scan in lines instead of the spread and holes above: the points on K
+  sweeps of parallel planes (each sweep in a random direction), `--slice-gap` (1 % of the
+  diagonal by default) apart, as a stack of contours or a line scanner's profiles give them;
 - with `--views K`, a scanner's sight instead of the spread, holes and axis-wise noise above:
   the points that K views from above see (orthographic depth maps around the object, 15–60°
   above the horizon of +y, so the underside and the deep concavities go unseen; grazing faces
@@ -36,7 +39,7 @@ wall time and peak memory of the whole tool (reading and writing included).
     apt-get install libusb-1.0-0    # Open3D's wheel loads it (an ImportError without it)
     cargo build --release -p rbf-cli
     /tmp/scan-venv/bin/python benches/peers/scan_vs_poisson.py [--points 100000]
-        [--noise 0 0.002 0.005 0.01] [--sparse 0.08 | --views 8] [--seed 11] [--tools rbf open3d meshlab] [--exact]
+        [--noise 0 0.002 0.005 0.01] [--sparse 0.08 | --views 8 | --slices 1 [--slice-gap 0.01]] [--seed 11] [--tools rbf open3d meshlab] [--exact]
         [MESH ...]
 
 Prints one JSON line per scan and tool, then a Markdown table.
@@ -101,6 +104,25 @@ def simulate(mesh, n, noise, seed, sparse=None):
         middle = 0.5 * (mesh.bounds[0][axis] + mesh.bounds[1][axis])
         keep = (clean[:, axis] < middle) | (rng.uniform(size=n) < sparse)
         clean, normals, n = clean[keep], normals[keep], int(keep.sum())
+    noisy = clean + rng.normal(size=clean.shape) * noise * diag
+    cloud, real, order = with_outliers(mesh, noisy, rng)
+    return cloud, clean, normals, real, order
+
+
+def simulate_slices(mesh, n, noise, seed, sweeps, gap):
+    """Like `simulate`, but the points lie on `sweeps` sets of parallel planes `gap` × the
+    diagonal apart (each set in a random direction): n of them, evenly along the lines."""
+    rng = np.random.default_rng(seed)
+    diag = float(np.linalg.norm(mesh.extents))
+    # Bands 4 % of the gap wide keep about 4 % of the candidates.
+    candidates, faces = trimesh.sample.sample_surface(mesh, 30 * n,
+                                                      seed=int(rng.integers(1 << 31)))
+    on_line = np.zeros(len(candidates), bool)
+    for direction in rng.normal(size=(sweeps, 3)):
+        t = candidates @ (direction / np.linalg.norm(direction)) / (gap * diag)
+        on_line |= np.abs(t - np.round(t)) < 0.02
+    pick = rng.permutation(np.flatnonzero(on_line))[:n]
+    clean, normals = candidates[pick], mesh.face_normals[faces[pick]]
     noisy = clean + rng.normal(size=clean.shape) * noise * diag
     cloud, real, order = with_outliers(mesh, noisy, rng)
     return cloud, clean, normals, real, order
@@ -288,14 +310,20 @@ def main():
                     help="keep only this share of the points on one half of each object")
     ap.add_argument("--views", type=int, default=None,
                     help="simulate a scanner's sight from this many views above the object")
+    ap.add_argument("--slices", type=int, default=None,
+                    help="simulate a scan in lines: this many sweeps of parallel planes")
+    ap.add_argument("--slice-gap", type=float, default=0.01,
+                    help="the planes' spacing with --slices, a share of the diagonal")
     ap.add_argument("--exact", action="store_true",
                     help="also F-scores by exact distances to each surface's triangles "
                          "(f_score_*_exact; slower)")
     ap.add_argument("--tools", nargs="+", default=["rbf", "open3d", "meshlab"],
                     help="which tools to run (rbf, open3d, meshlab)")
     args = ap.parse_args()
-    if args.views is not None and args.sparse is not None:
-        ap.error("--views and --sparse are two ways to simulate a scan: give one")
+    if sum(x is not None for x in (args.views, args.sparse, args.slices)) > 1:
+        ap.error("--views, --sparse and --slices are ways to simulate a scan: give one")
+    if args.slices is not None and (args.slices < 1 or not args.slice_gap > 0):
+        ap.error("--slices needs at least one sweep and a --slice-gap above 0")
     if args.views is not None and args.views < 1:
         ap.error("--views needs at least one view")
     depth = args.depth or (10 if args.points >= 500_000 else 9)
@@ -311,7 +339,10 @@ def main():
         truth_samples, _ = trimesh.sample.sample_surface(truth, 100_000, seed=3)
         for noise in args.noise:
             out_dir = tempfile.mkdtemp(prefix=f"scan-{name}-")
-            if args.views:
+            if args.slices:
+                cloud, clean, normals, real, order = simulate_slices(
+                    truth, args.points, noise, args.seed, args.slices, args.slice_gap)
+            elif args.views:
                 cloud, clean, normals, real, order = simulate_views(truth, args.points, noise,
                                                                     args.seed, args.views)
             else:
