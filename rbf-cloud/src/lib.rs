@@ -41,7 +41,7 @@ mod tree;
 pub use distance::distances_to_cloud;
 pub use duplicates::distinct_points;
 pub use neighbours::Neighbours;
-pub use normals::{estimate_normals, line_share, normal_of};
+pub use normals::{estimate_normals, estimate_normals_spanning_lines, line_share, normal_of};
 pub use offsets::{clear_offsets, clear_offsets_with_tree};
 pub use orientation::{Orientation, orient_normals};
 pub use outliers::statistical_outliers;

@@ -5,7 +5,7 @@
 use nalgebra::Matrix3;
 use rayon::prelude::*;
 
-use crate::Neighbours;
+use crate::{Neighbours, PointTree};
 
 /// A unit normal at every point, from the point and its neighbours (unoriented). A
 /// neighbourhood with no spread at all (every neighbour coincident) gets [0, 0, 0].
@@ -46,6 +46,54 @@ pub fn normal_of(points: &[[f64; 3]], i: usize, near: &[u32]) -> [f64; 3] {
     } else {
         [0.0; 3]
     }
+}
+
+/// [`estimate_normals`] for a cloud scanned in lines: where a point's neighbourhood in `near`
+/// still lies along a line (where the lines run farther apart than elsewhere, on a face nearly
+/// parallel to the planes that cut them), its normal is taken from twice as many of its nearest
+/// points (through `tree`, over `points`), and again, up to `most`.
+///
+/// ```
+/// use rbf_cloud::{Neighbours, PointTree, estimate_normals_spanning_lines};
+/// // Lines 0.05 apart of points 0.002 apart in the plane z = 1: 16 neighbours cannot tell it.
+/// let points: Vec<[f64; 3]> =
+///     (0..10_000).map(|i| [(i % 500) as f64 * 0.002, (i / 500) as f64 * 0.05, 1.0]).collect();
+/// let tree = PointTree::new(&points);
+/// let normals = estimate_normals_spanning_lines(&points, &tree, &Neighbours::with_tree(&tree, &points, 16), 256);
+/// assert!(normals.iter().all(|n| n[2].abs() > 0.999));
+/// ```
+pub fn estimate_normals_spanning_lines(
+    points: &[[f64; 3]],
+    tree: &PointTree,
+    near: &Neighbours,
+    most: usize,
+) -> Vec<[f64; 3]> {
+    (0..points.len())
+        .into_par_iter()
+        .map(|i| {
+            let mut k = near.k();
+            let mut wider: Vec<u32> = near.of(i).to_vec();
+            while k < most && along_line(points, i, &wider) {
+                k = (2 * k).min(most);
+                wider = tree
+                    .k_nearest(&points[i], k + 1)
+                    .into_iter()
+                    .filter(|&(j, _)| j != i)
+                    .map(|(j, _)| j as u32)
+                    .collect();
+            }
+            normal_of(points, i, &wider)
+        })
+        .collect()
+}
+
+/// Whether point `i` and its neighbours `near` lie along a line (see [`LINE_SPREAD`]).
+fn along_line(points: &[[f64; 3]], i: usize, near: &[u32]) -> bool {
+    covariance_of(points, i, near).is_some_and(|c| {
+        let mut e: Vec<f64> = c.symmetric_eigenvalues().iter().copied().collect();
+        e.sort_by(f64::total_cmp);
+        e[1] < LINE_SPREAD * e[2]
+    })
 }
 
 /// The covariance of point `i` and its neighbours `near` about their centre; `None` where it
@@ -97,13 +145,7 @@ pub fn line_share(points: &[[f64; 3]], which: &[usize], near: &Neighbours) -> f6
     let along_lines = which
         .par_iter()
         .enumerate()
-        .filter(|&(r, &i)| {
-            covariance_of(points, i, near.of(r)).is_some_and(|c| {
-                let mut e: Vec<f64> = c.symmetric_eigenvalues().iter().copied().collect();
-                e.sort_by(f64::total_cmp);
-                e[1] < LINE_SPREAD * e[2]
-            })
-        })
+        .filter(|&(r, &i)| along_line(points, i, near.of(r)))
         .count();
     along_lines as f64 / which.len() as f64
 }

@@ -22,8 +22,8 @@
 //! one piece.
 
 use rbf_cloud::{
-    Neighbours, PointTree, clear_offsets_with_tree, distinct_points, estimate_normals, normal_of,
-    orient_normals, statistical_outliers,
+    Neighbours, PointTree, clear_offsets_with_tree, distinct_points, estimate_normals,
+    estimate_normals_spanning_lines, normal_of, orient_normals, statistical_outliers,
 };
 use rbf_core::{Constraint, FitSettings, Model, NormalOffset};
 
@@ -341,6 +341,12 @@ pub fn reconstruct(
             };
             (normals, false, filled)
         }
+        // Where neighbourhoods grown for a cloud in lines still lie along one, wider ones.
+        _ if k > settings.neighbours => (
+            estimate_normals_spanning_lines(&kept, &kept_tree, &near, MOST_LINE_NEIGHBOURS * 2),
+            true,
+            0,
+        ),
         _ => (estimate_normals(&kept, &near), true, 0),
     };
     let longest = longest_side(&kept);
