@@ -234,7 +234,8 @@ def reconstruct(
     ``refuted``: reversed by fits; ``reversed_by_sight``: by lines of sight, on a clean scan
     only in a second attempt, made when the first fit strayed outside nearly everywhere or its
     mesh came out open: ``looked_again``;
-    ``disagreeing``: left out), noise,
+    ``disagreeing``: left out; ``neighbours``: how many each normal was taken from, 16, or
+    more for a cloud scanned in lines), noise,
     centres (``added_where_sheets_close``: of them, the points a clean scan's spread gained
     where two of its sheets run close), ``lambda`` (0 for a greedy fit), outside constraints added, ``bubbles_dropped`` (pieces the scan cannot show),
     watertight, genus, components).

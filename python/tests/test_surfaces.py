@@ -141,6 +141,24 @@ def test_reconstruct_a_scan_without_normals():
     # constraints, so none is left to make the spread finer where sheets run close.
     assert report["reversed_by_sight"] == 0
     assert report["added_where_sheets_close"] == 0 and report["centres"] <= 3000
+    assert report["neighbours"] == 16
+
+
+def test_reconstruct_a_torus_scanned_in_slices():
+    # 13 circles' pairs in planes z = const 0.06 apart, 0.005 apart along each: 16 neighbours
+    # lie along one circle, so the neighbourhoods grow until they span the slices.
+    rings = []
+    for k in range(13):
+        z = -0.36 + 0.06 * k
+        across = np.sqrt(0.16 - z * z)
+        for r in (1 - across, 1 + across):
+            u = np.linspace(0, 2 * np.pi, int(2 * np.pi * r / 0.005), endpoint=False)
+            rings.append(np.column_stack([r * np.cos(u), r * np.sin(u), np.full(len(u), z)]))
+    points = np.vstack(rings)
+    _, _, model, report = rbfsurf.reconstruct(points, resolution=64, return_report=True)
+    assert report["neighbours"] > 16
+    assert (report["watertight"], report["genus"], report["components"]) == (True, 1, 1)
+    assert model([[1.0, 0.0, 0.0]])[0] > 0 > model([[0.0, 0.0, 0.0]])[0]
 
 
 def test_reconstruct_estimates_given_normals_of_zero_length():
