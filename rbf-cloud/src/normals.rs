@@ -50,8 +50,9 @@ pub fn normal_of(points: &[[f64; 3]], i: usize, near: &[u32]) -> [f64; 3] {
 
 /// [`estimate_normals`] for a cloud scanned in lines: where a point's neighbourhood in `near`
 /// still lies along a line (where the lines run farther apart than elsewhere, on a face nearly
-/// parallel to the planes that cut them), its normal is taken from twice as many of its nearest
-/// points (through `tree`, over `points`), and again, up to `most`.
+/// parallel to the planes that cut them), or along one curved contour, its normal is taken from
+/// twice as many of its nearest points (through `tree`, over `points`), and again, up to
+/// `most`.
 ///
 /// ```
 /// use rbf_cloud::{Neighbours, PointTree, estimate_normals_spanning_lines};
@@ -73,18 +74,32 @@ pub fn estimate_normals_spanning_lines(
         .map(|i| {
             let mut k = near.k();
             let mut wider: Vec<u32> = near.of(i).to_vec();
-            while k < most && along_line(points, i, &wider) {
+            let mut reach: Vec<f64> = near.distances_of(i).to_vec();
+            while k < most && (along_line(points, i, &wider) || on_one_curve(&reach)) {
                 k = (2 * k).min(most);
-                wider = tree
+                (wider, reach) = tree
                     .k_nearest(&points[i], k + 1)
                     .into_iter()
                     .filter(|&(j, _)| j != i)
-                    .map(|(j, _)| j as u32)
-                    .collect();
+                    .map(|(j, d)| (j as u32, d))
+                    .unzip();
             }
             normal_of(points, i, &wider)
         })
         .collect()
+}
+
+/// Whether neighbours at the sorted distances `reach` lie along one curve, straight or not
+/// (a contour that curls within its slice is planar, and its plane is the slice's): the k-th
+/// lies about k/4 times as far as the fourth along a curve, √(k/4) times over a surface; the
+/// test is their geometric mean, (k/4)^¾.
+fn on_one_curve(reach: &[f64]) -> bool {
+    let k = reach.len();
+    if k < 8 {
+        return false;
+    }
+    let ratio = reach[k - 1] / reach[3].max(f64::MIN_POSITIVE);
+    ratio > (k as f64 / 4.0).powf(0.75)
 }
 
 /// Whether point `i` and its neighbours `near` lie along a line (see [`LINE_SPREAD`]).
