@@ -164,3 +164,44 @@ pub fn line_share(points: &[[f64; 3]], which: &[usize], near: &Neighbours) -> f6
         .count();
     along_lines as f64 / which.len() as f64
 }
+
+#[cfg(test)]
+mod tests {
+    use super::on_one_curve;
+
+    /// The distances from a point to its `k` nearest among `others`, sorted.
+    fn reach(p: [f64; 3], others: &[[f64; 3]], k: usize) -> Vec<f64> {
+        let mut d: Vec<f64> = others
+            .iter()
+            .filter(|q| **q != p)
+            .map(|q| ((0..3).map(|i| (q[i] - p[i]).powi(2)).sum::<f64>()).sqrt())
+            .collect();
+        d.sort_by(f64::total_cmp);
+        d.truncate(k);
+        d
+    }
+
+    /// A contour curled into a circle (in its slice's plane) is one curve, as a straight line
+    /// is; a lattice over a surface is not, at 16 and at 64 neighbours.
+    #[test]
+    fn a_curled_contour_is_one_curve_and_a_surface_is_not() {
+        let circle: Vec<[f64; 3]> = (0..200)
+            .map(|j| {
+                let t = std::f64::consts::TAU * j as f64 / 200.0;
+                [0.1 * t.cos(), 0.1 * t.sin(), 0.0]
+            })
+            .collect();
+        let line: Vec<[f64; 3]> = (0..200).map(|j| [0.003 * j as f64, 0.0, 0.0]).collect();
+        let lattice: Vec<[f64; 3]> = (0..900)
+            .map(|j| [0.01 * (j % 30) as f64, 0.01 * (j / 30) as f64, 0.0])
+            .collect();
+        for k in [16, 64] {
+            assert!(on_one_curve(&reach(circle[0], &circle, k)), "circle, {k}");
+            assert!(on_one_curve(&reach(line[100], &line, k)), "line, {k}");
+            assert!(
+                !on_one_curve(&reach(lattice[465], &lattice, k)),
+                "lattice, {k}"
+            );
+        }
+    }
+}
