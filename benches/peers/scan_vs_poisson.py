@@ -20,7 +20,12 @@ default) and repeatable:
   the points that K views from above see (orthographic depth maps around the object, 15–60°
   above the horizon of +y, so the underside and the deep concavities go unseen; grazing faces
   beyond 75° dropped; density by the cosine of the angle of view), points seen from several
-  views kept once per view, and the noise along each view's line of sight.
+  views kept once per view, and the noise along each view's line of sight;
+- with `--misaligned M` beside `--views`, each view registered with an error: moved by a random
+  offset (σ = M × the diagonal along every axis) and turned by a random angle (σ = M radians
+  about a random axis through the object's centre), so that where views overlap the scan lies
+  in two or more layers a few tenths of a percent apart, as scans merged from several
+  registrations do.
 
 No normals are given to either tool. Open3D (as its users run it): statistical outliers (20
 neighbours, 2 deviations), normals from 20 neighbours, oriented by its tangent-plane MST,
@@ -39,7 +44,7 @@ wall time and peak memory of the whole tool (reading and writing included).
     apt-get install libusb-1.0-0    # Open3D's wheel loads it (an ImportError without it)
     cargo build --release -p rbf-cli
     /tmp/scan-venv/bin/python benches/peers/scan_vs_poisson.py [--points 100000]
-        [--noise 0 0.002 0.005 0.01] [--sparse 0.08 | --views 8 | --slices 1 [--slice-gap 0.01]] [--seed 11] [--tools rbf open3d meshlab] [--exact]
+        [--noise 0 0.002 0.005 0.01] [--sparse 0.08 | --views 8 [--misaligned 0.001] | --slices 1 [--slice-gap 0.01]] [--seed 11] [--tools rbf open3d meshlab] [--exact]
         [MESH ...]
 
 Prints one JSON line per scan and tool, then a Markdown table.
@@ -128,9 +133,11 @@ def simulate_slices(mesh, n, noise, seed, sweeps, gap):
     return cloud, clean, normals, real, order
 
 
-def simulate_views(mesh, n, noise, seed, views):
-    """Like `simulate`, but what a scanner sees from `views` directions above the object."""
+def simulate_views(mesh, n, noise, seed, views, misaligned=0.0):
+    """Like `simulate`, but what a scanner sees from `views` directions above the object, each
+    view registered with an error of `misaligned` (a share of the diagonal, and radians)."""
     rng = np.random.default_rng(seed)
+    errors = np.random.default_rng(seed + 1)
     diag = float(np.linalg.norm(mesh.extents))
     candidates, faces = trimesh.sample.sample_surface(mesh, 40 * n, seed=int(rng.integers(1 << 31)))
     face_normals = mesh.face_normals[faces]
@@ -157,7 +164,14 @@ def simulate_views(mesh, n, noise, seed, views):
         np.minimum.at(front, cell, depth)
         visible = (depth <= front[cell] + 1.5 * pixel) & (facing > np.cos(np.radians(75)))
         visible &= rng.uniform(size=len(candidates)) < facing
-        seen_points.append(candidates[visible])
+        seen = candidates[visible]
+        if misaligned > 0:
+            axis = errors.normal(size=3)
+            turn_by = trimesh.transformations.rotation_matrix(
+                errors.normal() * misaligned, axis / np.linalg.norm(axis), mesh.centroid)[:3, :3]
+            centre = mesh.centroid
+            seen = (seen - centre) @ turn_by.T + centre + errors.normal(size=3) * misaligned * diag
+        seen_points.append(seen)
         seen_normals.append(face_normals[visible])
         seen_rays.append(np.broadcast_to(d, (int(visible.sum()), 3)))
     clean = np.vstack(seen_points)
@@ -310,6 +324,9 @@ def main():
                     help="keep only this share of the points on one half of each object")
     ap.add_argument("--views", type=int, default=None,
                     help="simulate a scanner's sight from this many views above the object")
+    ap.add_argument("--misaligned", type=float, default=0.0,
+                    help="with --views: each view registered with this error (a share of the "
+                         "diagonal, and radians)")
     ap.add_argument("--slices", type=int, default=None,
                     help="simulate a scan in lines: this many sweeps of parallel planes")
     ap.add_argument("--slice-gap", type=float, default=0.01,
@@ -326,6 +343,8 @@ def main():
         ap.error("--slices needs at least one sweep and a --slice-gap above 0")
     if args.views is not None and args.views < 1:
         ap.error("--views needs at least one view")
+    if args.misaligned and args.views is None:
+        ap.error("--misaligned moves the views of --views: give both")
     depth = args.depth or (10 if args.points >= 500_000 else 9)
     try:
         import pymeshlab  # noqa: F401
@@ -343,8 +362,8 @@ def main():
                 cloud, clean, normals, real, order = simulate_slices(
                     truth, args.points, noise, args.seed, args.slices, args.slice_gap)
             elif args.views:
-                cloud, clean, normals, real, order = simulate_views(truth, args.points, noise,
-                                                                    args.seed, args.views)
+                cloud, clean, normals, real, order = simulate_views(
+                    truth, args.points, noise, args.seed, args.views, args.misaligned)
             else:
                 cloud, clean, normals, real, order = simulate(truth, args.points, noise,
                                                               seed=args.seed, sparse=args.sparse)
