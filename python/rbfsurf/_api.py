@@ -235,7 +235,9 @@ def reconstruct(
     only in a second attempt, made when the first fit strayed outside nearly everywhere or its
     mesh came out open: ``looked_again``;
     ``disagreeing``: left out; ``neighbours``: how many each normal was taken from, 16, or
-    more for a cloud scanned in lines), noise,
+    more for a cloud scanned in lines), noise (``smoothed``: whether the scan counted as
+    noisy, its noise above 1e-3 of the box or above 4 % of its points' spacing, and its
+    points were smoothed),
     centres (``added_where_sheets_close``: of them, the points a clean scan's spread gained
     where two of its sheets run close), ``lambda`` (0 for a greedy fit), outside constraints added, ``bubbles_dropped`` (pieces the scan cannot show),
     watertight, genus, components).

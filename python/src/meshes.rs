@@ -302,6 +302,7 @@ pub(crate) fn _reconstruct<'py>(
     d.set_item("pieces", report.pieces)?;
     d.set_item("neighbours", report.neighbours)?;
     d.set_item("noise", report.noise)?;
+    d.set_item("smoothed", report.smoothed)?;
     d.set_item("tolerance", report.tolerance)?;
     d.set_item("centres", report.centres)?;
     d.set_item("added_where_sheets_close", report.added_where_sheets_close)?;

@@ -21,8 +21,9 @@ every normal oriented consistently and outward (a minimum spanning tree of the n
 given normals are checked the same way and flipped ones fixed); then patches of them, cut where
 neighbouring normals turn by more than 35° (on a clean scan, again at 26°), are reversed as a
 whole where the winding number of all the other points says they point inward at their own
-probes. A noisy scan is smoothed first:
-its noise is measured on neighbourhoods grown until they reach four times it, each point moves
+probes. A noisy scan (noise above 1e-3 of the box, or above 4 % of the points' own spacing:
+the summary says \"points smoothed\") is smoothed first: its noise is measured on
+neighbourhoods grown until they reach four times it, each point moves
 onto the plane of such a neighbourhood (onto a quadric where it spreads beyond twice that
 reach, in a sparsely scanned region), and each normal's sign is checked by the winding
 number of the other points (at probes inside and outside along it; where the two together see
@@ -84,9 +85,8 @@ pub(crate) struct ReconstructArgs {
     #[arg(long, value_name = "N")]
     max_centres: Option<usize>,
     /// λ of the smoothing fit, for a box whose longest side is 2: larger is smoother, smaller
-    /// follows the points more closely [default: from the measured noise: 3e-5 on a clean
-    /// scan, 1e-4 up to a noise of 6e-3 of the box, growing as its power 1.5 above; not used
-    /// with --tolerance].
+    /// follows the points more closely [default: from the measured noise: 3e-5 up to 1e-3 of
+    /// the box, 1e-4 up to 6e-3, growing as its power 1.5 above; not used with --tolerance].
     #[arg(long, value_name = "L")]
     smoothing: Option<f64>,
     /// Keep every point (no outlier removal).
@@ -187,7 +187,7 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.beyond_tolerance
         );
         eprintln!(
-            "{} points read, {}{} outliers dropped{}, normals {}{} ({} flipped, {} reversed by winding numbers, {} by fits, {} by lines of sight{}, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}, tolerance {:.1e} of the box; {} centres{}{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
+            "{} points read, {}{} outliers dropped{}, normals {}{} ({} flipped, {} reversed by winding numbers, {} by fits, {} by lines of sight{}, {} at odds with their neighbours left out, {} piece(s)); noise {:.1e}{}, tolerance {:.1e} of the box; {} centres{}{}, largest miss {:.1e}{}, {} outside constraints added; {} triangles at {}{}, {}; {:.2} s; wrote {}",
             report.points,
             if report.duplicates > 0 {
                 format!("{} repeated and ", report.duplicates)
@@ -225,6 +225,11 @@ pub(crate) fn run(args: &ReconstructArgs, quiet: bool) -> Result<(), Failure> {
             report.disagreeing,
             report.pieces,
             report.noise,
+            if report.smoothed {
+                " (points smoothed)"
+            } else {
+                ""
+            },
             report.tolerance,
             report.centres,
             match report.added_where_sheets_close {
