@@ -1163,13 +1163,14 @@ fn measure_noise(
             .map(|(r, &i)| (i, normals[i], rows.of(r))),
     );
     let spacing = median_reach(&rows);
+    let mut reach = spacing;
     let mut grown_to = None;
     for _ in 0..6 {
         let k = rows.k();
-        let Some(reach) = median_reach(&rows) else {
+        let Some(median) = reach else {
             break;
         };
-        let grown = k as f64 * (4.0 * noise / reach.max(f64::MIN_POSITIVE)).powi(2);
+        let grown = k as f64 * (4.0 * noise / median.max(f64::MIN_POSITIVE)).powi(2);
         if !(grown > 1.25 * k as f64) || k >= MOST_NEIGHBOURS {
             break;
         }
@@ -1187,6 +1188,7 @@ fn measure_noise(
             (sample.iter().enumerate()).map(|(r, &i)| (i, sampled_normals[r], rows.of(r))),
         );
         grown_to = Some(grown_k);
+        reach = median_reach(&rows);
     }
     let wide = grown_to.map(|k| {
         let neighbours = Neighbours::with_tree(tree, points, k);
