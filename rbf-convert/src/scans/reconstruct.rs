@@ -1212,14 +1212,10 @@ fn counts_as_noisy(noise: f64, reach: f64, longest: f64) -> bool {
 
 /// The median distance from a point of `rows` to the farthest of its neighbours.
 fn median_reach(rows: &Neighbours) -> Option<f64> {
-    let mut reach: Vec<f64> = (0..rows.len())
+    let reach: Vec<f64> = (0..rows.len())
         .filter_map(|r| rows.distances_of(r).last().copied())
         .collect();
-    if reach.is_empty() {
-        return None;
-    }
-    let middle = reach.len() / 2;
-    Some(*reach.select_nth_unstable_by(middle, f64::total_cmp).1)
+    (!reach.is_empty()).then(|| super::dipoles::median(&reach))
 }
 
 /// The neighbours each point's plane and the orientation's graph are taken from: `k`, or,
