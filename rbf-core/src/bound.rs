@@ -107,7 +107,9 @@ impl<const D: usize> InterpolantView<'_, f64, D> {
     /// A box that holds the surface: the centres' bounding box grown by `margin` times its
     /// longest side, then by a quarter (up to eight times) while f > 0 somewhere on a 16ᴰ⁻¹
     /// sample grid of its faces, and once more by a tenth for bulges between the samples.
-    /// A closed surface lies inside it; a surface that is not closed is cut by it.
+    /// The box is found by sampling, not proved: a closed surface around the centres lies
+    /// inside it, while a surface that is not closed, or a detached bubble of a fit wholly
+    /// outside the grown box, is cut by it.
     ///
     /// ```
     /// use rbf_core::{InterpolantView, Kernel};

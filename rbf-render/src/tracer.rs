@@ -27,7 +27,8 @@ pub enum Lipschitz {
     Auto,
     /// Proved from the kernel's derivatives and the weights: per cell for skipping empty space
     /// (see [`rbf_core::InterpolantView::ball_bound`]) and, for r³, per point from the exact
-    /// gradient and Σ|wⱼ|·6r bounds on the Hessian. No ray can pass through the surface.
+    /// gradient and Σ|wⱼ|·6r bounds on the Hessian. No ray can pass through the surface
+    /// inside the traced box ([`rbf_core::InterpolantView::surface_box`]).
     Guaranteed,
     /// 1.5 times the largest |∇f| at each cell's corners and centre, per cell: tight and fast,
     /// though a feature thinner than a cell can be stepped over.
