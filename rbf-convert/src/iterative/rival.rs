@@ -217,7 +217,7 @@ pub(crate) fn refine_rival(
         let before = constraints.len();
         let budget = IterativeSettings {
             max_constraints: before + room,
-            ..settings.clone()
+            ..*settings
         };
         if goal.refine(&errors, &mut constraints, &budget, true) == 0 {
             break;
