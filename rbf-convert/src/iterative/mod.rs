@@ -289,8 +289,9 @@ impl AfterTheLoop<'_> {
 
     /// Where the loop fell short (a topology other than the mesh's, `loop_topology`, or a
     /// surface more than [`CLOSE`] times the target off), its rival: normal constraints at the
-    /// mesh's vertices, with nearly as many rows as the budget ([`RIVAL_SHARE`]), measured the
-    /// same way; returned, with its topology, if it stands better (it is not polished).
+    /// mesh's vertices (and slabs on thin walls), with nearly as many rows as the budget
+    /// ([`RIVAL_SHARE`]), refined at its largest voxel errors and measured the same way;
+    /// returned, with its topology, if it stands better (it is not polished).
     fn rival(
         &self,
         loop_topology: &TopologyReport,
@@ -677,9 +678,7 @@ impl Standing {
             && self.max_error <= other.max_error
             && key(self) < key(other)
     }
-}
 
-impl Standing {
     /// Whether this rival is to be kept instead of the loop's model `other`: it
     /// [beats](Standing::beats) it, and where the loop's model is close, also has less of the
     /// topology wrong. A close loop's model has its polish still ahead, which may mend its
