@@ -1,7 +1,8 @@
 //! The loop's rival (not in Yngve & Turk): normal constraints at an even spread of the mesh's
 //! vertices (Turk & O'Brien 2002, §4.3), each inside point only as deep as it stays nearest
 //! its own vertex among all of the mesh's (Carr et al. 2001's check), so that a wall thinner
-//! than the offset is not crossed; where the wall under a vertex is thinner than two offsets,
+//! than the offset is not crossed; where the wall under a vertex is thinner than two offsets
+//! (and at least a voxel thick),
 //! a slab holds both its sides ([`slab`]); then refined at its largest voxel errors as the
 //! loop refines its own models ([`refine_rival`]).
 //!
@@ -10,7 +11,7 @@
 //! shell, genus 2) it stalled with 576 constraints, 9.3 voxels off, genus 15 and six pieces.
 //! Normal constraints at 2000 of its vertices hold both sides of the wall: genus 2, one
 //! piece, within 0.23 voxel RMS of the mesh but 2.96 voxels off at worst; with slabs at 1000
-//! and the refinement, genus 2 within 0.08 voxel RMS and 1.35 at worst. Where the loop's model
+//! and the refinement, genus 2 within 0.08 voxel RMS and 1.29 at worst. Where the loop's model
 //! falls short of its goals, the rival is fitted, measured the same way and kept if it ranks
 //! better ([`RivalReport`]).
 
