@@ -2,9 +2,8 @@
 //! vertices (Turk & O'Brien 2002, §4.3), each inside point only as deep as it stays nearest
 //! its own vertex among all of the mesh's (Carr et al. 2001's check), so that a wall thinner
 //! than the offset is not crossed; where the wall under a vertex is thinner than two offsets
-//! (and at least a voxel thick),
-//! a slab holds both its sides ([`slab`]); then refined at its largest voxel errors as the
-//! loop refines its own models ([`refine_rival`]).
+//! and at least a voxel thick, a slab holds both its sides ([`slab`]); then refined at its
+//! largest voxel errors as the loop refines its own models ([`refine_rival`]).
 //!
 //! The loop places its constraints by voxel errors, which cannot see a wall a couple of voxels
 //! thick: on a spherical shell with a wall of 2 voxels and three openings (a skull's bony
