@@ -287,3 +287,31 @@ fn a_shell_two_voxels_thick_that_the_loop_cannot_hold_goes_to_its_rival() {
     assert!(model.interpolant.value(&[0.0, 0.0, -0.75]) < 0.0);
     assert!(model.interpolant.value(&[0.0, 0.0, -1.05]) < 0.0);
 }
+
+#[test]
+fn a_shell_two_voxels_thick_at_128_is_held_by_slabs() {
+    // A bowl's wall of 0.03 against voxels of 1.9 / 128 = 0.0148: two voxels, just too thick
+    // for the thin-part probes and under two normal offsets (0.038). The loop's own model falls
+    // short (2.45 voxels off, and before slabs its rival too: genus 64); the rival's slabs
+    // hold both sides of the wall, and its refinement ends the wall at the rim.
+    let mesh = bowl(0.9, 0.03, 0.5, 96, 40);
+    let (model, report) =
+        convert_iterative(&mesh, &IterativeSettings::default(), |_, _| {}).unwrap();
+    let rival = report.rival.expect("the loop falls short");
+    assert!(rival.kept, "{rival:?}");
+    assert!(
+        rival.max_error <= 1.5 && rival.rms_error <= 0.2,
+        "{rival:?}"
+    );
+    let t = report.topology.unwrap();
+    assert_eq!(t.components, 1, "{t:?}");
+    assert!(t.genus.is_some_and(|g| g <= 1), "{t:?}");
+    // Inside the wall, outside it on both sides, all around the bowl.
+    for k in 0..12 {
+        let a = k as f64 * std::f64::consts::TAU / 12.0;
+        let at = |r: f64| [r * 0.6 * a.cos(), r * 0.6 * a.sin(), -r * 0.8];
+        assert!(model.interpolant.value(&at(0.9)) > 0.0, "{k}");
+        assert!(model.interpolant.value(&at(0.9 - 0.045)) < 0.0, "{k}");
+        assert!(model.interpolant.value(&at(0.9 + 0.045)) < 0.0, "{k}");
+    }
+}
