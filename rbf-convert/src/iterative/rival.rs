@@ -188,7 +188,7 @@ fn slab(tree: &WindingTree, p: [f64; 3], n: [f64; 3], distance: f64) -> Option<f
 }
 
 /// Rounds of [`refine_rival`] at most.
-const REFINE_ROUNDS: usize = 8;
+const REFINE_ROUNDS: usize = 4;
 
 /// The rival refined as the loop refines its models (Yngve & Turk's §5.3, [`Goal::refine`]):
 /// constraints at its largest voxel errors, their values in the rival's scale (offsets), up to
