@@ -21,6 +21,7 @@ use rbf_mesh::{TriMesh, WindingTree};
 
 use super::IterativeSettings;
 use super::goal::{Goal, summary};
+use super::topology::first_change;
 use crate::{ConvertError, poisson_subset};
 
 /// The offset of the rival's normal constraints, as a fraction of the box's longest side:
@@ -173,17 +174,7 @@ fn slab(tree: &WindingTree, p: [f64; 3], n: [f64; 3], distance: f64) -> Option<f
     if !inside(0.25 * step) {
         return None; // a normal that does not enter the solid cleanly (a sharp crease)
     }
-    let count = (2.0 * SLAB_STEPS) as usize;
-    let k = (1..=count).find(|&k| !inside(k as f64 * step))?;
-    let (mut lo, mut hi) = ((k - 1) as f64 * step, k as f64 * step);
-    for _ in 0..10 {
-        let mid = 0.5 * (lo + hi);
-        if inside(mid) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    let (lo, hi) = first_change(inside, true, 2.0 * SLAB_STEPS * step, step, 10)?;
     Some(0.5 * (lo + hi))
 }
 
@@ -208,11 +199,14 @@ pub(crate) fn refine_rival(
         NormalOffset::Absolute(d) if d > 0.0 => 1.0 / d,
         _ => 1.0,
     };
+    let rows_of = |m: &Model<3>| -> usize { m.constraints.iter().map(Constraint::rows).sum() };
+    if rows_of(&rival) >= rows {
+        return rival; // no room: a rival without slabs, whose spread took the whole share
+    }
     let mut errors = goal.errors(&goal.evaluate(&rival.interpolant.view(), settings));
     let mut best = (summary(&errors), rival.clone());
     for _ in 0..REFINE_ROUNDS {
-        let used: usize = rival.constraints.iter().map(Constraint::rows).sum();
-        let room = rows.saturating_sub(used);
+        let room = rows.saturating_sub(rows_of(&rival));
         if room == 0 {
             break;
         }

@@ -216,17 +216,7 @@ fn probe(
     if inside(0.25 * step) != start_inside {
         return None; // a normal that does not leave the surface cleanly (a sharp crease)
     }
-    let count = (reach / step).ceil() as usize;
-    let k = (1..=count).find(|&k| inside(k as f64 * step) != start_inside)?;
-    let (mut lo, mut hi) = ((k - 1) as f64 * step, k as f64 * step);
-    for _ in 0..8 {
-        let mid = 0.5 * (lo + hi);
-        if inside(mid) == start_inside {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    let (lo, hi) = first_change(inside, start_inside, reach, step, 8)?;
     // The gap (or part) ends at about (lo + hi) / 2: its middle is halfway there.
     let half = 0.25 * (lo + hi);
     if inside(half) != start_inside {
@@ -237,6 +227,30 @@ fn probe(
         position: at(half),
         value: if start_inside { distance } else { -distance },
     })
+}
+
+/// Where `inside(t)` first differs from `start` for t in steps of `step` up to `reach`: the
+/// bracket (lo, hi) around the change, narrowed by `halvings` bisections; `None` if it does
+/// not change. The march of the probes here and of the rival's slabs.
+pub(crate) fn first_change(
+    inside: impl Fn(f64) -> bool,
+    start: bool,
+    reach: f64,
+    step: f64,
+    halvings: usize,
+) -> Option<(f64, f64)> {
+    let count = (reach / step).ceil() as usize;
+    let k = (1..=count).find(|&k| inside(k as f64 * step) != start)?;
+    let (mut lo, mut hi) = ((k - 1) as f64 * step, k as f64 * step);
+    for _ in 0..halvings {
+        let mid = 0.5 * (lo + hi);
+        if inside(mid) == start {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some((lo, hi))
 }
 
 /// How many probes are violated (on the wrong side of f's surface), and those of them not
