@@ -194,7 +194,8 @@ impl AfterTheLoop<'_> {
     /// last round measured, and the loop's model is measured (and its rival tried, as it fell
     /// short) only if that round's topology is not the mesh's or there was no round. On most
     /// meshes that spares one measure, 4–6 s; a loop whose handles the polish closes is then
-    /// not measured, nor its rival tried.
+    /// not measured, nor its rival tried. A loop's model that did not come close meets its
+    /// rival before its measure ([`AfterTheLoop::rival_first`]).
     fn finish(
         &self,
         model: Model<3>,
@@ -210,8 +211,16 @@ impl AfterTheLoop<'_> {
         let (mut loop_topology, surface) = if polish_first {
             (None, surface_near(&model, 0.5 * h, &[]))
         } else {
+            let fitted = if self.close(self.loop_errors.0) {
+                None
+            } else {
+                match self.rival_first(&mut seconds, report) {
+                    RivalFirst::Kept(model, t) => return Ok(with_seconds((model, t), seconds)),
+                    RivalFirst::Waits(fitted) => Some(fitted),
+                }
+            };
             let (t, surface) = self.measure(&model, self.added, &mut seconds);
-            if let Some(kept) = self.rival(&t, &mut seconds, report) {
+            if let Some(kept) = self.rival(&t, &mut seconds, report, fitted) {
                 return Ok(with_seconds(kept, seconds));
             }
             (Some(t), surface)
@@ -237,7 +246,7 @@ impl AfterTheLoop<'_> {
             };
             if loop_topology.is_none() && t.difference() > 0 {
                 let (lt, _) = self.measure(&model, self.added, &mut seconds);
-                if let Some(kept) = self.rival(&lt, &mut seconds, report) {
+                if let Some(kept) = self.rival(&lt, &mut seconds, report, None) {
                     return Ok(with_seconds(kept, seconds));
                 }
                 loop_topology = Some(lt);
@@ -255,7 +264,7 @@ impl AfterTheLoop<'_> {
             Some(t) => t,
             None => {
                 let (t, _) = self.measure(&model, self.added, &mut seconds);
-                if let Some(kept) = self.rival(&t, &mut seconds, report) {
+                if let Some(kept) = self.rival(&t, &mut seconds, report, None) {
                     return Ok(with_seconds(kept, seconds));
                 }
                 t
@@ -288,17 +297,17 @@ impl AfterTheLoop<'_> {
     }
 
     /// Where the loop fell short (a topology other than the mesh's, `loop_topology`, or a
-    /// surface more than [`CLOSE`] times the target off), its rival: normal constraints at the
-    /// mesh's vertices (and slabs on thin walls), with nearly as many rows as the budget
-    /// ([`RIVAL_SHARE`]), refined at its largest voxel errors and measured the same way;
-    /// returned, with its topology, if it stands better (it is not polished).
+    /// surface more than [`CLOSE`] times the target off), its rival ([`AfterTheLoop::fit_rival`],
+    /// or `fitted` if it was fitted before the loop's measure, `Some(None)` if that failed),
+    /// measured the same way; returned, with its topology, if it stands better (it is not
+    /// polished).
     fn rival(
         &self,
         loop_topology: &TopologyReport,
         seconds: &mut f64,
         report: &mut IterativeReport,
+        fitted: Option<Option<Rival>>,
     ) -> Option<(Model<3>, TopologyReport)> {
-        let (goal, settings, h) = (self.goal, self.settings, self.goal.h);
         let loop_standing = Standing {
             close: self.close(self.loop_errors.0),
             topology: loop_topology.difference(),
@@ -308,6 +317,46 @@ impl AfterTheLoop<'_> {
         if loop_standing.close && loop_standing.topology == 0 {
             return None;
         }
+        let mut rival = fitted.unwrap_or_else(|| self.fit_rival())?;
+        // Its topology is measured only if it could win with the mesh's (the measure is most
+        // of the rival's time: 10 s of 13 on the skull-like shell).
+        if rival.measured.is_none() && rival.standing(0).beats(&loop_standing) {
+            rival.measured = Some(self.measure(&rival.model, 0, seconds).0);
+        }
+        let kept = (rival.measured.as_ref())
+            .is_some_and(|t| rival.standing(t.difference()).beats_loop(&loop_standing));
+        self.report_rival(&rival, kept, report);
+        let t = rival.measured.filter(|_| kept)?;
+        Some((rival.model, TopologyReport { added: 0, ..t }))
+    }
+
+    /// Where the loop's model is not close (more than [`CLOSE`] times the target off): its
+    /// rival, fitted before the loop's model is measured. A close rival with the mesh's
+    /// topology beats such a model whatever its topology ([`Standing::beats_loop`]), and is
+    /// then kept without that measure (4 s of the 30 a turned skull-like shell took);
+    /// otherwise the rival, measured if it is close, waits for [`AfterTheLoop::rival`].
+    fn rival_first(&self, seconds: &mut f64, report: &mut IterativeReport) -> RivalFirst {
+        let Some(mut rival) = self.fit_rival() else {
+            return RivalFirst::Waits(None);
+        };
+        if !rival.close {
+            return RivalFirst::Waits(Some(rival));
+        }
+        let t = self.measure(&rival.model, 0, seconds).0;
+        let kept = t.difference() == 0;
+        rival.measured = Some(t);
+        if !kept {
+            return RivalFirst::Waits(Some(rival));
+        }
+        self.report_rival(&rival, true, report);
+        RivalFirst::Kept(rival.model, TopologyReport { added: 0, ..t })
+    }
+
+    /// The loop's rival: normal constraints at the mesh's vertices (and slabs on thin walls),
+    /// with nearly as many rows as the budget ([`RIVAL_SHARE`]), refined at its largest voxel
+    /// errors and scored as the loop's models are; `None` if it could not be fitted.
+    fn fit_rival(&self) -> Option<Rival> {
+        let (goal, settings, h) = (self.goal, self.settings, self.goal.h);
         let half_rows = |share: f64| (share * settings.max_constraints as f64 / 2.0) as usize;
         let (vertices, with_slabs) = (half_rows(RIVAL_SHARE), half_rows(SLAB_SHARE));
         let rival = rival_model(
@@ -323,35 +372,57 @@ impl AfterTheLoop<'_> {
         let rival = refine_rival(goal, rival, settings, rows);
         let check =
             |f: &Interpolant<f64, 3>, c: &[Constraint<3>]| fixes(&f.view(), self.probes, c, h);
-        let rival = settle_far_field(goal, rival, settings, check);
-        let inside = goal.evaluate(&rival.interpolant.view(), settings);
+        let model = settle_far_field(goal, rival, settings, check);
+        let inside = goal.evaluate(&model.interpolant.view(), settings);
         let (max_error, rms_error) = summary(&goal.errors(&inside));
-        let standing = |topology: u64| Standing {
+        Some(Rival {
             close: self.close(max_error),
-            topology,
+            model,
             max_error,
             rms_error,
-        };
-        let vertices = (rival.constraints.iter())
+            measured: None,
+        })
+    }
+
+    fn report_rival(&self, rival: &Rival, kept: bool, report: &mut IterativeReport) {
+        let vertices = (rival.model.constraints.iter())
             .filter(|c| c.kind == ConstraintKind::Normal)
             .count();
-        // Its topology is measured only if it could win with the mesh's (the measure is most
-        // of the rival's time: 10 s of 13 on the skull-like shell).
-        let measured = standing(0)
-            .beats(&loop_standing)
-            .then(|| self.measure(&rival, 0, seconds).0);
-        let kept = measured
-            .as_ref()
-            .is_some_and(|t| standing(t.difference()).beats_loop(&loop_standing));
         report.rival = Some(RivalReport {
             vertices,
-            max_error,
-            rms_error,
-            topology: measured.map(|t| (t.genus, t.components)),
+            max_error: rival.max_error,
+            rms_error: rival.rms_error,
+            topology: (rival.measured.as_ref()).map(|t| (t.genus, t.components)),
             kept,
         });
-        let t = measured.filter(|_| kept)?;
-        Some((rival, TopologyReport { added: 0, ..t }))
+    }
+}
+
+/// What [`AfterTheLoop::rival_first`] found: a rival kept, or one (if it could be fitted)
+/// waiting for the loop's measure.
+enum RivalFirst {
+    Kept(Model<3>, TopologyReport),
+    Waits(Option<Rival>),
+}
+
+/// The loop's rival, fitted and scored, with its topology once measured.
+struct Rival {
+    model: Model<3>,
+    close: bool,
+    max_error: f64,
+    rms_error: f64,
+    measured: Option<TopologyReport>,
+}
+
+impl Rival {
+    /// How it stands with `topology` of difference from the mesh.
+    fn standing(&self, topology: u64) -> Standing {
+        Standing {
+            close: self.close,
+            topology,
+            max_error: self.max_error,
+            rms_error: self.rms_error,
+        }
     }
 }
 
@@ -739,6 +810,25 @@ mod tests {
         assert!(standing(true, 1, 1.73, 0.32).beats_loop(&standing(true, 4, 1.41, 0.38)));
         // A far loop's model gives way as before.
         assert!(standing(true, 0, 1.41, 0.16).beats_loop(&standing(false, 18, 9.27, 1.78)));
+    }
+
+    #[test]
+    fn a_close_rival_with_the_topology_beats_a_far_loop_whatever_its_topology() {
+        // What lets `rival_first` keep such a rival without measuring the loop's model: close
+        // means within CLOSE (2) times the target (1 voxel), far beyond it.
+        for rival_max in [0.5, 1.0, 1.41, 2.0] {
+            for rival_rms in [0.05, 0.3, 1.0] {
+                let rival = standing(true, 0, rival_max, rival_rms);
+                for loop_max in [2.0001, 2.45, 9.3] {
+                    for loop_rms in [0.01, 0.4, 2.0] {
+                        for topology in [0, 1, 18] {
+                            let far = standing(false, topology, loop_max, loop_rms);
+                            assert!(rival.beats_loop(&far), "{rival:?} against {far:?}");
+                        }
+                    }
+                }
+            }
+        }
     }
     use rbf_core::Constraint;
 
