@@ -18,8 +18,12 @@ use super::topology::{Probe, TopologyReport, fixes, measure, sampled_vertices, s
 use super::{IterativeSettings, rows};
 use crate::ConvertError;
 
-/// Rounds of pulling the surface back to the mesh after the loop.
-const POLISH_ROUNDS: usize = 2;
+/// Rounds of pulling the surface back to the mesh after the loop, at most: they end when one
+/// finds nothing astray. Each round's refit can leave a new stray of its own, which only a
+/// round after it sees: with two, a turned Nefertiti bust kept one 1.66 voxels out, 2.4
+/// voxels from any constraint (0.99 with four, 1.7 s more); on the corpus four took the
+/// Hausdorff distance of five meshes from 0.95–1.18 to 0.83–0.97 voxel, 0.1–1.4 s more each.
+const POLISH_ROUNDS: usize = 4;
 
 /// Refits within a polishing round that add the probes its corrections pushed the surface
 /// across.
