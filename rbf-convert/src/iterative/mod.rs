@@ -771,9 +771,13 @@ impl Standing {
 const CLOSE: f64 = 2.0;
 
 impl Rank {
-    fn new(violations: usize, max_error: f64, rms_error: f64, settings: &IterativeSettings) -> Self {
-        let not_close_or_violated =
-            violations > 0 || !(max_error <= CLOSE * settings.target_error);
+    fn new(
+        violations: usize,
+        max_error: f64,
+        rms_error: f64,
+        settings: &IterativeSettings,
+    ) -> Self {
+        let not_close_or_violated = violations > 0 || !(max_error <= CLOSE * settings.target_error);
         Self {
             not_close_or_violated,
             rough: !not_close_or_violated && !(rms_error <= settings.target_rms),
@@ -786,7 +790,7 @@ impl Rank {
 
 #[cfg(test)]
 mod tests {
-    use super::{Standing, spread_out};
+    use super::{IterativeSettings, Rank, Standing, spread_out};
 
     fn standing(close: bool, topology: u64, max_error: f64, rms_error: f64) -> Standing {
         Standing {
@@ -820,6 +824,22 @@ mod tests {
         assert!(standing(true, 1, 1.73, 0.32).beats_loop(&standing(true, 4, 1.41, 0.38)));
         // A far loop's model gives way as before.
         assert!(standing(true, 0, 1.41, 0.16).beats_loop(&standing(false, 18, 9.27, 1.78)));
+    }
+
+    #[test]
+    fn close_models_within_the_rms_target_rank_first() {
+        let settings = IterativeSettings::default();
+        let rank = |max, rms, violations| Rank::new(violations, max, rms, &settings);
+        // The turned knot's iterations 13 and 20.
+        assert!(rank(1.41, 0.277, 0) < rank(1.0, 0.351, 0));
+        // Both within the RMS target, or both above it: the maximum decides.
+        assert!(rank(1.0, 0.29, 0) < rank(1.41, 0.2, 0));
+        assert!(rank(1.0, 0.5, 0) < rank(1.41, 0.31, 0));
+        // Far models, or close ones with a probe violated, by their maximum error as before.
+        assert!(rank(2.5, 0.9, 0) < rank(3.0, 0.2, 0));
+        assert!(rank(1.41, 0.5, 1) < rank(1.73, 0.2, 1));
+        // Any close model with no probe violated before every other.
+        assert!(rank(2.0, 0.9, 0) < rank(1.0, 0.1, 1));
     }
 
     #[test]
